@@ -1,0 +1,136 @@
+#pragma once
+/// The client of a Pioneer's firmware (ARCOS), over any byte stream: the
+/// SYNC handshake, OPEN, CONFIG, ENABLE, keep-alive, SIPs into robot state,
+/// link-loss detection, reconnect and clean disconnect. It follows the
+/// protocol reference (docs/arcos-protocol.md), not any one simulator, so it
+/// works with a real P3-AT on serial, with MobileSim-compatible simulators and
+/// with our p3at_sim on TCP.
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "p3at/common/result.hpp"
+#include "p3at/hal/byte_stream.hpp"
+#include "p3at/hal/clock.hpp"
+#include "p3at/hal/drive_base.hpp"
+#include "p3at/bridge/odometry_tracker.hpp"
+#include "p3at/protocols/arcos/config_packet.hpp"
+#include "p3at/protocols/arcos/decoder.hpp"
+#include "p3at/protocols/arcos/sip.hpp"
+
+namespace p3at::bridge {
+
+/// Timing and behaviour of a session. Defaults are the real protocol's.
+struct ClientConfig {
+  int sync_step_timeout_ms = 1000;   ///< wait for each SYNC echo (ARIA: 1000 ms)
+  int handshake_timeout_ms = 6000;   ///< give up connecting after this (ARIA: ~6 s)
+  int config_retry_ms = 200;         ///< CONFIG repeated this often…
+  int config_timeout_ms = 1000;      ///< …for at most this long; no answer is tolerated
+  int keepalive_ms = 500;            ///< the longest silence towards the robot
+  int link_loss_ms = 1000;           ///< no SIP for this long → link lost
+  int close_grace_ms = 100;          ///< between ENABLE 0 and CLOSE on disconnect
+  bool serial_preamble = false;      ///< send ARIA's "WMS2\r" first (serial links only)
+  bool enable_motors = true;         ///< ENABLE 1 after connecting
+  bool auto_reconnect = true;        ///< wait_for_update retries a lost link…
+  int reconnect_interval_ms = 1000;  ///< …at most this often
+  std::string log_name = "bridge";   ///< component name in log lines
+};
+
+/// What the robot told us about itself while connecting.
+struct RobotInfo {
+  arcos::RobotIdentity identity;
+  std::optional<arcos::ConfigPacket> config;  ///< absent when CONFIG went unanswered
+  arcos::RobotParams params;                  ///< conversion factors for the subclass
+};
+
+/// Counters a person or a test can read; never reset.
+struct ClientStats {
+  std::uint64_t sips = 0;
+  std::uint64_t other_packets = 0;    ///< valid non-SIP packets after the handshake
+  std::uint64_t bad_sips = 0;         ///< SIP packets that failed to decode
+  std::uint64_t commands_sent = 0;
+  std::uint64_t keepalives_sent = 0;  ///< PULSEs or VEL/RVEL repeats sent only to keep the link alive
+  std::uint64_t handshakes = 0;       ///< completed handshakes
+  std::uint64_t handshake_failures = 0;
+  std::uint64_t link_losses = 0;
+  std::uint64_t reconnects = 0;       ///< completed handshakes after a link loss
+  std::uint64_t refused_motion = 0;   ///< motion requests refused because the link was not ok
+};
+
+/// Opens a fresh byte stream to the robot; called on connect and reconnect.
+using StreamOpener = std::function<Result<std::unique_ptr<hal::ByteStream>>()>;
+
+/// A Pioneer drive base reached over ARCOS. Single-threaded: one owner calls it.
+class ArcosClient final : public hal::DriveBase {
+ public:
+  ArcosClient(StreamOpener opener, hal::Clock& clock, ClientConfig config = {});
+  ~ArcosClient() override;
+
+  /// Opens the stream and runs the handshake: SYNC0/1/2 (with retries and the
+  /// "robot still open" recovery), OPEN, CONFIG, ENABLE. Blocks at most
+  /// handshake_timeout_ms plus the CONFIG wait. On success link == ok.
+  Status connect();
+
+  /// ENABLE 0, a short grace, CLOSE, then closes the stream. Safe to call twice.
+  Status disconnect();
+
+  // hal::DriveBase
+  Status set_velocity(double trans_mps, double rot_radps) override;
+  Status stop() override;
+  Status emergency_stop() override;
+  Result<bool> wait_for_update(int timeout_ms) override;
+  const hal::DriveState& state() const override { return state_; }
+
+  /// HEAD: turn to an absolute heading in the firmware's frame (degrees).
+  Status set_heading(int heading_deg);
+  /// MOVE: drive a relative distance (mm) under firmware control.
+  Status move(int distance_mm);
+  /// ENABLE 1 / 0. Re-enabling clears a latched emergency stop.
+  Status enable_motors(bool enable);
+
+  const RobotInfo& info() const { return info_; }
+  const ClientStats& stats() const { return stats_; }
+  const arcos::DecoderStats& decoder_stats() const { return decoder_.stats(); }
+
+ private:
+  Status handshake();
+  Status sync_once();
+  /// Next packet with `id` (any packet when nullopt), handling SIPs on the way when sips_ok.
+  Result<arcos::Packet> wait_for_packet(std::optional<std::uint8_t> id, std::int64_t deadline_us, bool sips_ok);
+  Status read_and_dispatch(int timeout_ms);
+  void handle_packet(const arcos::Packet& packet);
+  void handle_sip(const arcos::Packet& packet);
+  Status send(const arcos::Frame& frame);
+  Status send_motion();
+  void service_keepalive();
+  void check_link();
+  void lose_link(const std::string& why);
+  bool motion_allowed(const char* what);
+  int ms_until_keepalive() const;
+
+  StreamOpener opener_;
+  hal::Clock& clock_;
+  ClientConfig config_;
+  std::unique_ptr<hal::ByteStream> stream_;
+  arcos::PacketDecoder decoder_;
+  OdometryTracker odometry_;
+  hal::DriveState state_;
+  RobotInfo info_;
+  ClientStats stats_;
+  std::vector<arcos::Packet> inbox_;  // non-SIP packets waiting for the handshake
+  std::int64_t last_sip_us_ = 0;
+  std::int64_t last_sent_us_ = 0;
+  std::int64_t last_reconnect_attempt_us_ = 0;
+  bool estop_latched_ = false;
+  bool ever_connected_ = false;
+  bool opened_ = false;               // OPEN sent on the current stream
+  bool motion_active_ = false;        // a non-zero VEL/RVEL is in force
+  int vel_mm_s_ = 0;
+  int rvel_deg_s_ = 0;
+};
+
+}  // namespace p3at::bridge
