@@ -82,6 +82,8 @@ struct DecodedCommand {
 /// Decodes a command packet's argument. Extra bytes after an argument are
 /// ignored (ARIA sends some with arguments the robot does not need).
 DecodedCommand decode_command(const Packet& packet);
+/// `text` would dangle: decode a packet that outlives the result.
+DecodedCommand decode_command(const Packet&& packet) = delete;
 
 /// Splits a VEL2 argument back into (left, right) in 20 mm/s units.
 struct Vel2 {

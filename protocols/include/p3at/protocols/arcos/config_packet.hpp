@@ -52,7 +52,8 @@ struct ConfigPacket {
   bool operator==(const ConfigPacket&) const = default;
 };
 
-/// Encodes all fields in wire order as packet 0x20.
+/// Encodes all fields in wire order as packet 0x20. Strings are cut at their
+/// first NUL and to 32 characters, so the packet always fits one frame.
 Frame encode_config(const ConfigPacket& config);
 
 /// Decodes a 0x20 packet. Like ARIA, a truncated packet is tolerated: fields
@@ -60,8 +61,11 @@ Frame encode_config(const ConfigPacket& config);
 /// fields were wholly present.
 ConfigPacket decode_config(const Packet& packet, int* fields_read = nullptr);
 
-/// What a simulator answers (§6): serial "SIM", SIP cycle 100, watchdog 2000,
-/// TransVelMax 3000 (top 3000?), RotVelMax 150, accelerations 300 / 100.
+/// What a simulator answers (§6): class "Pioneer", the given subclass and name,
+/// serial "SIM", SIP cycle 100 ms, watchdog 2000 ms, current TransVelMax 3000 mm/s
+/// and RotVelMax 150 deg/s, translational accel/decel 300 mm/s², rotational
+/// accel/decel 100 deg/s²; top velocities/accelerations at least those (top trans
+/// vel 3000 mm/s, top rot vel 300 deg/s, p3at.p's MaxRVelocity).
 ConfigPacket simulator_config(const std::string& name, const std::string& subclass);
 
 }  // namespace p3at::arcos

@@ -83,6 +83,7 @@ struct RobotIdentity {
   std::string robot_class;
   std::string subclass;
 };
+/// Each string is cut at its first NUL and to 80 characters.
 Frame encode_identity(const RobotIdentity& identity);
 /// Missing terminators are tolerated (the string ends at the payload end).
 RobotIdentity decode_identity(const Packet& packet);
@@ -100,11 +101,14 @@ struct RobotParams {
   double vel_conv = 1.0;      ///< velocity units → mm/s
   double range_conv = 1.0;    ///< sonar units → mm
   double angle_conv = 0.0015339807878856412;  ///< 2π/4096 rad per unit
-  double diff_conv = 0.0034;  ///< wheel velocity difference → rad/s... × mm/s
+  /// rad/s per mm/s: rotational velocity = (right − left) / 2 × diff_conv
+  /// (0.0034 ↔ an effective track of ~588 mm).
+  double diff_conv = 0.0034;
   int vel2_divisor = 20;
 
-  /// The P3-AT's parameters for an SYNC2 subclass: "p3at" uses the old encoder
-  /// units (DistConvFactor 0.465), "p3at-sh" 1.0; other subclasses get 1.0.
+  /// The P3-AT's parameters for a SYNC2 subclass (compared case-insensitively,
+  /// like ARIA): "p3at" uses the old encoder units (DistConvFactor 0.465),
+  /// "p3at-sh" 1.0; other subclasses get 1.0.
   static RobotParams for_subclass(const std::string& subclass);
 };
 
