@@ -15,8 +15,10 @@ class TcpListener {
   TcpListener& operator=(const TcpListener&) = delete;
   ~TcpListener();
 
-  /// Listens on host:port (SO_REUSEADDR). Port 0 picks a free port (see port()).
-  /// A busy port or bad address is an Error naming them.
+  /// Listens on host:port (SO_REUSEADDR). Port 0 picks a free port (see port()),
+  /// host "" listens on all interfaces. A busy port (refused), an address this
+  /// machine lacks (not_found) or a port outside 0-65535 (invalid_argument) is
+  /// an Error naming them.
   static Result<std::unique_ptr<TcpListener>> listen(const std::string& host, int port);
 
   /// Accepts one pending connection, waiting at most `timeout_ms` (0 = poll).

@@ -12,8 +12,8 @@ namespace p3at::hal {
 
 struct Url {
   std::string scheme;                        ///< before "://", lower case
-  std::string host;                          ///< authority without port (may be empty)
-  int port = -1;                             ///< -1 when absent
+  std::string host;                          ///< authority without port (may be empty); IPv6 without brackets
+  int port = -1;                             ///< 0-65535, or -1 when absent
   std::string path;                          ///< from the first '/' after the authority
   std::map<std::string, std::string> query;  ///< key=value pairs after '?', '&'-separated
 
@@ -21,7 +21,9 @@ struct Url {
   std::string query_or(const std::string& key, const std::string& fallback) const;
 };
 
-/// Parses `scheme://authority/path?k=v&k2=v2`. Errors name the URL and what was expected.
+/// Parses `scheme://authority/path?k=v&k2=v2`; the authority is `host`,
+/// `host:port`, `[ipv6]` or `[ipv6]:port`. No percent-decoding. Errors are
+/// Error::Code::invalid_argument naming the URL and what was expected.
 Result<Url> parse_url(std::string_view text);
 
 }  // namespace p3at::hal
