@@ -284,6 +284,7 @@ Status ArcosClient::send(const arcos::Frame& frame) {
   if (!st) return st;
   ++stats_.commands_sent;
   last_sent_us_ = clock_.now_us();
+  sips_at_last_send_ = stats_.sips;
   return {};
 }
 
@@ -364,7 +365,9 @@ int ArcosClient::ms_until_keepalive() const {
 
 void ArcosClient::service_keepalive() {
   if (!stream_ || !opened_) return;
-  if (clock_.now_us() - last_sent_us_ < std::int64_t{config_.keepalive_ms} * 1000) return;
+  const bool time_due = clock_.now_us() - last_sent_us_ >= std::int64_t{config_.keepalive_ms} * 1000;
+  const bool sips_due = stats_.sips - sips_at_last_send_ >= static_cast<std::uint64_t>(config_.keepalive_sips);
+  if (!time_due && !sips_due) return;
   // Like ARIA: repeat a motion command in force, otherwise PULSE.
   const Status st = motion_active_ ? send_motion() : send(arcos::encode_command(arcos::Command::pulse));
   if (st) ++stats_.keepalives_sent;
@@ -412,8 +415,9 @@ Result<bool> ArcosClient::wait_for_update(int timeout_ms) {
       wait_ms = std::min(wait_ms, ms_between(now, last_sip_us_ + std::int64_t{config_.link_loss_ms} * 1000 + 1000));
     }
     const Status st = read_and_dispatch(wait_ms);
+    service_keepalive();  // SIPs just read may make a keep-alive due
     if (!st) {
-      lose_link(stream_->describe() + ": " + st.error().message);
+      lose_link(st.error().message);
       stream_->close();
       stream_.reset();
       opened_ = false;

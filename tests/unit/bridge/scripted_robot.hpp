@@ -37,6 +37,7 @@ class ScriptedRobot {
   std::uint16_t start_x = 0x7F00;    // near the 15-bit wrap
   std::uint16_t start_y = 100;
   std::int16_t start_th = 0;
+  std::int64_t sip_period_us = 100'000;  // shorter = a simulator running faster than real time
 
   // What the robot saw and does.
   std::vector<ReceivedCommand> received;
@@ -74,7 +75,7 @@ class ScriptedRobot {
     while (opened && !silent && clock_.now_us() >= next_sip_us_) {
       integrate(0.1);
       if (!sips_paused) send(arcos::encode_sip(make_sip()));
-      next_sip_us_ += 100'000;
+      next_sip_us_ += sip_period_us;
     }
   }
 

@@ -189,6 +189,18 @@ TEST_CASE("keep-alive: the robot never hears nothing for more than 500 ms") {
   CHECK(rig.robot.received.back().number == num(Command::pulse));
 }
 
+TEST_CASE("keep-alive also every 5 SIPs, for simulators running faster than real time") {
+  Rig rig;
+  rig.robot.sip_period_us = 20'000;  // a 5x speed-up: the firmware's watchdog counts simulated time
+  REQUIRE(rig.client->connect().ok());
+  const std::size_t first = rig.robot.received.size();
+  rig.run_for(2.0);
+  // Every 5 SIPs = 100 ms of wall time = 500 ms of the robot's time.
+  const auto sent = rig.robot.received.size() - first;
+  CHECK(sent >= 17);
+  CHECK(sent <= 22);
+}
+
 TEST_CASE("keep-alive repeats the velocity in force") {
   Rig rig;
   REQUIRE(rig.client->connect().ok());

@@ -30,7 +30,10 @@ struct ClientConfig {
   int handshake_timeout_ms = 6000;   ///< give up connecting after this (ARIA: ~6 s)
   int config_retry_ms = 200;         ///< CONFIG repeated this often…
   int config_timeout_ms = 1000;      ///< …for at most this long; no answer is tolerated
-  int keepalive_ms = 500;            ///< the longest silence towards the robot
+  int keepalive_ms = 500;            ///< the longest silence towards the robot…
+  int keepalive_sips = 5;            ///< …or this many SIPs, whichever comes first: a simulator
+                                     ///< running faster than real time sends SIPs faster, and its
+                                     ///< watchdog counts simulated time
   int link_loss_ms = 1000;           ///< no SIP for this long → link lost
   int close_grace_ms = 100;          ///< between ENABLE 0 and CLOSE on disconnect
   bool serial_preamble = false;      ///< send ARIA's "WMS2\r" first (serial links only)
@@ -124,6 +127,7 @@ class ArcosClient final : public hal::DriveBase {
   std::vector<arcos::Packet> inbox_;  // non-SIP packets waiting for the handshake
   std::int64_t last_sip_us_ = 0;
   std::int64_t last_sent_us_ = 0;
+  std::uint64_t sips_at_last_send_ = 0;
   std::int64_t last_reconnect_attempt_us_ = 0;
   bool estop_latched_ = false;
   bool ever_connected_ = false;

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# The project's test command: installs what is needed, then builds and runs
+# every test. This is what .ci/run calls.
+#   1. release build: unit and hardware-in-the-loop (sitl) tests
+#   2. the same tests under AddressSanitizer + UndefinedBehaviorSanitizer
+#   3. libFuzzer targets, each for a bounded time (P3AT_FUZZ_SECONDS, default 30)
+#   4. SocketCAN tests inside a user-mode Linux kernel with vcan
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+jobs="$(nproc)"
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+
+step() { printf '\n==== %s ====\n' "$*"; }
+
+step "release build"
+bash scripts/build.sh release
+step "release tests (unit, sitl)"
+ctest --test-dir build/release -L 'unit|sitl' --output-on-failure -j "$jobs"
+
+step "sanitizer build (ASan + UBSan)"
+bash scripts/build.sh asan
+step "sanitizer tests (unit, sitl)"
+ctest --test-dir build/asan -L 'unit|sitl' --output-on-failure -j "$jobs"
+
+step "fuzz targets (bounded)"
+bash scripts/build.sh fuzz
+ctest --test-dir build/fuzz -L fuzz --output-on-failure -j "$jobs"
+
+if [ -x scripts/run-socketcan-tests.sh ]; then
+  step "SocketCAN tests inside user-mode Linux"
+  bash scripts/run-socketcan-tests.sh build/release
+fi
+step "all test stages passed"

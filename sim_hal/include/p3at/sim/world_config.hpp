@@ -1,0 +1,42 @@
+#pragma once
+/// The world file (docs/simulator.md): walls, robots and every error parameter.
+/// Loading is configuration, not control path: errors throw WorldFileError,
+/// whose message names file:line:column and what was expected.
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "p3at/sim/geometry.hpp"
+#include "p3at/sim/robot_model.hpp"
+
+namespace p3at::sim {
+
+struct WorldConfig {
+  std::vector<Segment> walls;
+  std::vector<RobotConfig> robots;
+  std::optional<std::uint64_t> seed;  ///< the file's `seed:`, if any (--seed overrides)
+};
+
+/// A world file that cannot be used. what() is one line:
+/// "FILE:LINE:COLUMN: what was expected".
+class WorldFileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Parses world YAML. `source_name` names the text in messages (a file path).
+/// Unknown keys, missing required fields, wrong types, out-of-range values,
+/// duplicate robot names or ports and robots starting inside a wall or another
+/// robot are all errors.
+WorldConfig parse_world(const std::string& yaml_text, const std::string& source_name);
+
+/// Reads and parses a world file. An unreadable file is a WorldFileError too.
+WorldConfig load_world_file(const std::string& path);
+
+/// The world used when no file is given: one P3-AT "robot1" at the origin, no walls.
+WorldConfig default_world();
+
+}  // namespace p3at::sim

@@ -1,0 +1,72 @@
+// Collisions: a wall or another robot stops the robot, sets the stall flags,
+// and the robot can back away.
+
+#include <doctest/doctest.h>
+
+#include "p3at/sim/p3at_model.hpp"
+#include "sim_test_util.hpp"
+
+using namespace p3at::sim;
+using p3at::sim::test::exact_robot;
+using p3at::sim::test::run_for;
+using p3at::sim::test::world_of;
+
+TEST_CASE("driving into a wall stalls the robot in front of it") {
+  World world(world_of({exact_robot()}, {{{1.0, -2.0}, {1.0, 2.0}}}));
+  SimRobot& robot = world.robot(0);
+  robot.controller().enable_motors(true);
+  robot.controller().command_trans_vel(0.3);
+  run_for(world, 6.0);
+  const double front = robot.true_pose().x_m + kP3atLengthM / 2.0;
+  CHECK(front <= 1.0);
+  CHECK(front > 0.99);
+  CHECK(robot.left_stall());
+  CHECK(robot.right_stall());
+  CHECK(robot.true_trans_vel_mps() == doctest::Approx(0.0));
+  // The wheels stopped: odometry did not run on past the wall.
+  CHECK(robot.odometry().x_m == doctest::Approx(robot.true_pose().x_m).epsilon(1e-9));
+
+  robot.controller().command_trans_vel(-0.2);
+  run_for(world, 1.0);
+  CHECK_FALSE(robot.left_stall());
+  CHECK(robot.true_pose().x_m + kP3atLengthM / 2.0 < 0.95);
+}
+
+TEST_CASE("turning a corner into a wall also stalls") {
+  // A wall alongside the robot's left, just clear of its corners.
+  World world(world_of({exact_robot()}, {{{-2.0, 0.27}, {2.0, 0.27}}}));
+  SimRobot& robot = world.robot(0);
+  robot.controller().enable_motors(true);
+  robot.controller().command_rot_vel(0.5);
+  run_for(world, 2.0);
+  CHECK(robot.left_stall());
+  CHECK(robot.true_pose().theta_rad < 0.2);
+}
+
+TEST_CASE("robots do not pass through each other") {
+  World world(world_of({exact_robot("a", 0.0, 0.0, 0.0), exact_robot("b", 2.0, 0.0, 180.0)}));
+  for (std::size_t i = 0; i < 2; ++i) {
+    world.robot(i).controller().enable_motors(true);
+    world.robot(i).controller().command_trans_vel(0.3);
+  }
+  run_for(world, 6.0);
+  const double gap = world.robot(1).true_pose().x_m - world.robot(0).true_pose().x_m - kP3atLengthM;
+  CHECK(gap >= 0.0);
+  CHECK(gap < 0.02);
+  CHECK(world.robot(0).left_stall());
+  CHECK(world.robot(1).right_stall());
+}
+
+TEST_CASE("footprint overlap: crossing edges, containment either way, separation") {
+  const Footprint big{{0.0, 0.0, 0.0}, 2.0, 2.0};
+  const Footprint small{{0.3, 0.2, 0.7}, 0.4, 0.3};
+  CHECK(intersects(big, small));
+  CHECK(intersects(small, big));
+  const Footprint apart{{2.0, 0.0, 0.0}, 0.5, 0.5};
+  CHECK_FALSE(intersects(big, apart));
+  // A square 0.6 m on a side turned 45°: its corner reaches 0.424 m from its centre.
+  CHECK(intersects(big, Footprint{{1.40, 0.0, 0.785398}, 0.6, 0.6}));
+  CHECK_FALSE(intersects(big, Footprint{{1.45, 0.0, 0.785398}, 0.6, 0.6}));
+  CHECK(intersects(big, Segment{{-0.5, 0.0}, {0.5, 0.0}}));  // wholly inside
+  CHECK_FALSE(intersects(big, Segment{{1.5, -3.0}, {1.5, 3.0}}));
+}

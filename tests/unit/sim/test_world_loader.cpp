@@ -1,0 +1,188 @@
+// The world file loader: a valid file, defaults and overrides, and errors that
+// name file:line:column and what was expected.
+
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include "p3at/sim/world_config.hpp"
+#include "sim_test_util.hpp"
+
+using namespace p3at::sim;
+using p3at::sim::test::kDeg;
+
+namespace {
+
+// The message of the WorldFileError that parsing `text` throws ("" if none).
+std::string load_error(const std::string& text) {
+  try {
+    (void)parse_world(text, "w.yaml");
+  } catch (const WorldFileError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool contains(const std::string& haystack, const std::string& needle) {
+  return haystack.find(needle) != std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("a valid world file with every section") {
+  const std::string text = R"(seed: 99
+walls:
+  - [0, 0, 10, 0]
+  - [0, 4, 10, 4]
+defaults:
+  odometry: {left_scale: 1.01, right_scale: 0.99, track_ratio: 1.05, random_trans_per_unit: 0.002, random_rot_per_unit: 0.003}
+  sonar: {max_range_m: 4.0, noise_sd_m: 0.02}
+  gyro: {bias_degps: 0.1, drift_degps_per_s: 0.001, noise_sd_degps: 0.05}
+  limits: {max_trans_vel_mps: 0.5, max_rot_vel_degps: 60, trans_accel_mps2: 0.25, trans_decel_mps2: 0.5, rot_accel_degps2: 90, rot_decel_degps2: 80}
+robots:
+  - name: alpha
+    x_m: 1.5
+    y_m: 2.0
+    theta_deg: 90
+    subclass: p3at
+    port: 9000
+    odometry:
+      right_scale: 1.02
+  - name: bravo
+    x_m: 3
+    y_m: 2
+)";
+  const WorldConfig w = parse_world(text, "w.yaml");
+  REQUIRE(w.seed.has_value());
+  CHECK(*w.seed == 99);
+  REQUIRE(w.walls.size() == 2);
+  CHECK(w.walls[1].a.y == doctest::Approx(4.0));
+  CHECK(w.walls[1].b.x == doctest::Approx(10.0));
+  REQUIRE(w.robots.size() == 2);
+  const RobotConfig& a = w.robots[0];
+  CHECK(a.name == "alpha");
+  CHECK(a.start.x_m == doctest::Approx(1.5));
+  CHECK(a.start.theta_rad == doctest::Approx(90 * kDeg));
+  CHECK(a.subclass == "p3at");
+  CHECK(a.port == 9000);
+  CHECK(a.odometry.left_scale == doctest::Approx(1.01));   // from defaults
+  CHECK(a.odometry.right_scale == doctest::Approx(1.02));  // overridden
+  CHECK(a.odometry.track_ratio == doctest::Approx(1.05));
+  CHECK(a.odometry.random_trans_per_unit == doctest::Approx(0.002));
+  CHECK(a.odometry.random_rot_per_unit == doctest::Approx(0.003));
+  CHECK(a.sonar.max_range_m == doctest::Approx(4.0));
+  CHECK(a.sonar.noise_sd_m == doctest::Approx(0.02));
+  CHECK(a.gyro.bias_degps == doctest::Approx(0.1));
+  CHECK(a.gyro.drift_degps_per_s == doctest::Approx(0.001));
+  CHECK(a.gyro.noise_sd_degps == doctest::Approx(0.05));
+  CHECK(a.limits.max_trans_vel_mps == doctest::Approx(0.5));
+  CHECK(a.limits.max_rot_vel_degps == doctest::Approx(60));
+  CHECK(a.limits.rot_decel_degps2 == doctest::Approx(80));
+  const RobotConfig& b = w.robots[1];
+  CHECK(b.subclass == "p3at-sh");  // the default
+  CHECK(b.port == -1);
+  CHECK(b.start.theta_rad == doctest::Approx(0.0));
+  CHECK(b.odometry.right_scale == doctest::Approx(0.99));
+}
+
+TEST_CASE("without a defaults block the built-in MobileSim-like error model applies") {
+  const WorldConfig w = parse_world("robots:\n  - {name: r, x_m: 0, y_m: 0}\n", "w.yaml");
+  CHECK(w.walls.empty());
+  CHECK_FALSE(w.seed.has_value());
+  CHECK(w.robots[0].odometry.random_trans_per_unit == doctest::Approx(0.0075));
+  CHECK(w.robots[0].sonar.max_range_m == doctest::Approx(5.0));
+  CHECK(w.robots[0].limits.trans_accel_mps2 == doctest::Approx(0.3));
+  CHECK(w.robots[0].limits.trans_decel_mps2 == doctest::Approx(0.6));
+}
+
+TEST_CASE("an unknown key is an error at its line and column") {
+  const std::string e = load_error("robots:\n  - name: r\n    x_m: 0\n    y_m: 0\n    odometry:\n      lefft_scale: 1.0\n");
+  CHECK(contains(e, "w.yaml:6:7:"));
+  CHECK(contains(e, "unknown key 'lefft_scale'"));
+  CHECK(contains(e, "left_scale"));  // the list of what was expected
+
+  const std::string top = load_error("robot:\n  - {name: r, x_m: 0, y_m: 0}\n");
+  CHECK(contains(top, "w.yaml:1:1:"));
+  CHECK(contains(top, "unknown key 'robot'"));
+}
+
+TEST_CASE("a missing required field is an error naming the field and the robot's position") {
+  const std::string e = load_error("robots:\n  - name: r\n    y_m: 0\n");
+  CHECK(contains(e, "w.yaml:2:5:"));
+  CHECK(contains(e, "missing required field 'x_m'"));
+  CHECK(contains(load_error("walls: []\n"), "missing required field 'robots'"));
+}
+
+TEST_CASE("a wrong type is an error at the value") {
+  const std::string e = load_error("robots:\n  - name: r\n    x_m: north\n    y_m: 0\n");
+  CHECK(contains(e, "w.yaml:3:10:"));
+  CHECK(contains(e, "expected a number for 'x_m'"));
+  CHECK(contains(e, "'north'"));
+
+  CHECK(contains(load_error("robots:\n  - {name: r, x_m: 0, y_m: 0, odometry: 3}\n"), "expected 'odometry' to be a mapping"));
+  CHECK(contains(load_error("walls: [[0, 0, 1]]\nrobots:\n  - {name: r, x_m: 5, y_m: 5}\n"), "w.yaml:1:9:"));
+  CHECK(contains(load_error("robots: 5\n"), "non-empty list"));
+}
+
+TEST_CASE("out-of-range and inconsistent values are errors") {
+  CHECK(contains(load_error("robots:\n  - {name: r, x_m: 0, y_m: 0, subclass: p3dx}\n"), "\"p3at-sh\" or \"p3at\""));
+  CHECK(contains(load_error("robots:\n  - {name: r, x_m: 0, y_m: 0, port: 70000}\n"), "1-65535"));
+  CHECK(contains(load_error("robots:\n  - {name: r, x_m: 0, y_m: 0, odometry: {left_scale: 0}}\n"), "'left_scale' > 0"));
+  CHECK(contains(load_error("robots:\n  - {name: r, x_m: 0, y_m: 0, sonar: {noise_sd_m: -1}}\n"), "'noise_sd_m' >= 0"));
+  CHECK(contains(load_error("robots:\n  - {name: r, x_m: .nan, y_m: 0}\n"), "finite"));
+  CHECK(contains(load_error("robots:\n  - {name: 'bad name', x_m: 0, y_m: 0}\n"), "letters, digits"));
+  CHECK(contains(load_error("robots:\n  - {name: r, x_m: 0, y_m: 0}\n  - {name: r, x_m: 5, y_m: 0}\n"),
+                 "w.yaml:3:5: duplicate robot name 'r'"));
+  CHECK(contains(load_error("robots:\n  - {name: a, x_m: 0, y_m: 0, port: 9000}\n  - {name: b, x_m: 5, y_m: 0, port: 9000}\n"),
+                 "duplicate port 9000"));
+  CHECK(contains(load_error("robots:\n  - {name: a, x_m: 0, y_m: 0}\n  - {name: b, x_m: 0.3, y_m: 0}\n"),
+                 "starts overlapping robot 'a'"));
+  CHECK(contains(load_error("walls: [[0.2, -1, 0.2, 1]]\nrobots:\n  - {name: a, x_m: 0, y_m: 0}\n"),
+                 "starts touching the wall"));
+  CHECK(contains(load_error("walls: [[1, 1, 1, 1]]\nrobots:\n  - {name: a, x_m: 0, y_m: 0}\n"), "distinct end points"));
+  CHECK(contains(load_error("robots:\n  - {name: a, x_m: 0, y_m: 0, name: b}\n"), "duplicate key 'name'"));
+  CHECK(contains(load_error("seed: -3\nrobots:\n  - {name: a, x_m: 0, y_m: 0}\n"), "non-negative integer"));
+}
+
+TEST_CASE("broken YAML, an empty file and a missing file are errors with a position or the path") {
+  CHECK(contains(load_error("robots: [\n  - {name: r\n"), "w.yaml:"));
+  CHECK(contains(load_error("robots: [\n  - {name: r\n"), "invalid YAML"));
+  CHECK(contains(load_error(""), "empty world file"));
+  try {
+    (void)load_world_file("/nonexistent/world.yaml");
+    FAIL("expected an error");
+  } catch (const WorldFileError& e) {
+    CHECK(contains(e.what(), "/nonexistent/world.yaml: cannot open"));
+  }
+}
+
+TEST_CASE("the example worlds load") {
+  const WorldConfig open = load_world_file(std::string(P3AT_SOURCE_DIR) + "/examples/worlds/open.yaml");
+  REQUIRE(open.robots.size() == 1);
+  CHECK(open.robots[0].name == "robot1");
+  CHECK(open.walls.empty());
+
+  const WorldConfig hall = load_world_file(std::string(P3AT_SOURCE_DIR) + "/examples/worlds/two_robots_hallway.yaml");
+  REQUIRE(hall.robots.size() == 2);
+  CHECK(hall.robots[0].start.x_m == doctest::Approx(5.5));
+  CHECK(hall.robots[1].start.x_m == doctest::Approx(6.5));
+  CHECK(hall.robots[1].odometry.right_scale == doctest::Approx(1.01));
+  CHECK(hall.walls.size() == 4);
+  // And the hallway world runs: both robots can drive along it without touching the walls.
+  World world(hall, 7);
+  for (std::size_t i = 0; i < 2; ++i) {
+    world.robot(i).controller().enable_motors(true);
+    world.robot(i).controller().command_trans_vel(0.3);
+  }
+  p3at::sim::test::run_for(world, 3.0);
+  CHECK(world.robot(1).true_pose().x_m > 7.0);
+  CHECK_FALSE(world.robot(1).left_stall());
+}
+
+TEST_CASE("the default world is one robot1 at the origin") {
+  const WorldConfig w = default_world();
+  REQUIRE(w.robots.size() == 1);
+  CHECK(w.robots[0].name == "robot1");
+  CHECK(w.robots[0].subclass == "p3at-sh");
+  CHECK(w.walls.empty());
+}
