@@ -33,11 +33,13 @@ class Loader {
       throw WorldFileError(source_ + ": empty world file: expected a mapping with 'robots' (and optional 'walls')");
     }
     expect_map(root, "the world file");
-    check_keys(root, {"walls", "robots", "defaults", "seed"}, "the world file");
+    check_keys(root, {"walls", "robots", "defaults", "seed", "radio"}, "the world file");
 
     WorldConfig world;
     if (const YAML::Node seed = root["seed"]; seed.IsDefined()) world.seed = read_seed(seed);
     if (const YAML::Node walls = root["walls"]; walls.IsDefined() && !walls.IsNull()) read_walls(walls, world.walls);
+
+    read_radio(root, world.radio);
 
     RobotConfig defaults;
     defaults.name.clear();
@@ -147,6 +149,23 @@ class Loader {
       if (std::hypot(s.b.x - s.a.x, s.b.y - s.a.y) < 1e-6) fail(w, "expected a wall with two distinct end points");
       out.push_back(s);
     }
+  }
+
+  // The optional `radio:` block: the simulated team radio's latency and loss.
+  void read_radio(const YAML::Node& root, RadioParams& radio) const {
+    section(root, "radio",
+            {"latency_min_ms", "latency_median_ms", "latency_sigma", "slow_probability", "slow_median_ms",
+             "slow_sigma", "loss_probability"},
+            [&](const YAML::Node& n, const std::string& k) {
+              if (k == "latency_min_ms") radio.latency_min_ms = read_number(n, k, 0.0, false);
+              if (k == "latency_median_ms") radio.latency_median_ms = read_number(n, k, 0.0, true);
+              if (k == "latency_sigma") radio.latency_sigma = read_number(n, k, 0.0, false);
+              if (k == "slow_probability") radio.slow_probability = read_number(n, k, 0.0, false);
+              if (k == "slow_median_ms") radio.slow_median_ms = read_number(n, k, 0.0, true);
+              if (k == "slow_sigma") radio.slow_sigma = read_number(n, k, 0.0, false);
+              if (k == "loss_probability") radio.loss_probability = read_number(n, k, 0.0, false);
+            });
+    if (const Status ok = validate_radio_params(radio); !ok) fail(root["radio"], ok.error().message);
   }
 
   // Reads the optional odometry/sonar/gyro/limits sections of `node` over `robot`.

@@ -84,7 +84,8 @@ TEST_CASE("golden: VEL2 left -10 right +10") {
   const Bytes vel2 = bytes({0xFA, 0xFB, 0x06, 0x20, 0x1B, 0xF6, 0x09, 0x16, 0x24});
   CHECK(to_bytes(encode_vel2(-10, 10)) == vel2);
   check_golden(vel2);
-  const DecodedCommand cmd = decode_command(to_packet(vel2));
+  const Packet packet = to_packet(vel2);  // outlives cmd, whose text points into it
+  const DecodedCommand cmd = decode_command(packet);
   CHECK(cmd.value == -2550);  // 0xF60A as a signed 16-bit value
   CHECK(unpack_vel2(cmd.value).left_units == -10);
   CHECK(unpack_vel2(cmd.value).right_units == 10);

@@ -186,3 +186,19 @@ TEST_CASE("the default world is one robot1 at the origin") {
   CHECK(w.robots[0].subclass == "p3at-sh");
   CHECK(w.walls.empty());
 }
+
+TEST_CASE("the radio block: values, defaults, and errors with a position") {
+  const WorldConfig w = parse_world(
+      "radio:\n  latency_median_ms: 12\n  loss_probability: 0.05\nrobots:\n  - {name: r, x_m: 0, y_m: 0}\n", "w.yaml");
+  CHECK(w.radio.latency_median_ms == doctest::Approx(12.0));
+  CHECK(w.radio.loss_probability == doctest::Approx(0.05));
+  CHECK(w.radio.latency_min_ms == doctest::Approx(RadioParams{}.latency_min_ms));  // default kept
+
+  const std::string typo = load_error("radio:\n  latency_medain_ms: 3\nrobots:\n  - {name: r, x_m: 0, y_m: 0}\n");
+  CHECK(contains(typo, "w.yaml:2:3:"));
+  CHECK(contains(typo, "unknown key 'latency_medain_ms'"));
+
+  const std::string range = load_error("radio:\n  loss_probability: 1.5\nrobots:\n  - {name: r, x_m: 0, y_m: 0}\n");
+  CHECK(contains(range, "w.yaml:"));
+  CHECK(contains(range, "loss_probability"));
+}

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "p3at/sim/geometry.hpp"
+#include "p3at/sim/radio.hpp"
 #include "p3at/sim/robot_model.hpp"
 
 namespace p3at::sim {
@@ -17,6 +18,7 @@ namespace p3at::sim {
 struct WorldConfig {
   std::vector<Segment> walls;
   std::vector<RobotConfig> robots;
+  RadioParams radio;                  ///< the team radio of fast-time runs (`radio:`)
   std::optional<std::uint64_t> seed;  ///< the file's `seed:`, if any (--seed overrides)
 };
 

@@ -76,14 +76,13 @@ struct DecodedCommand {
   std::uint8_t number = 0;
   ArgKind kind = ArgKind::none;
   int value = 0;                  ///< integer argument (sign applied)
-  std::string_view text;          ///< string argument; points into the packet
+  std::string_view text;          ///< string argument; points into the packet, so the packet
+                                  ///< must outlive this result when text is used
 };
 
 /// Decodes a command packet's argument. Extra bytes after an argument are
 /// ignored (ARIA sends some with arguments the robot does not need).
 DecodedCommand decode_command(const Packet& packet);
-/// `text` would dangle: decode a packet that outlives the result.
-DecodedCommand decode_command(const Packet&& packet) = delete;
 
 /// Splits a VEL2 argument back into (left, right) in 20 mm/s units.
 struct Vel2 {
