@@ -3,13 +3,7 @@
 // single-threaded, stepping the world every 100 ms of simulated time, paced at
 // 100 ms / speedup of wall time. See docs/simulator.md.
 
-// CLI11's inline helpers trip a GCC 12 false positive (-Wnull-dereference in
-// std::vector<std::string>::emplace_back inside CLI::detail::split); the
-// standard headers are first included here, so this silences only them.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wnull-dereference"
 #include <CLI/CLI.hpp>
-#pragma GCC diagnostic pop
 
 #include <csignal>
 #include <cstdint>

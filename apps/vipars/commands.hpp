@@ -1,0 +1,17 @@
+#pragma once
+// Each vipars subcommand registers its options and, when chosen, runs and
+// sets the process exit status.
+
+#include <CLI/CLI.hpp>
+
+namespace p3at::vipars {
+
+/// Exit statuses shared by every subcommand.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitNoGo = 1;      ///< verify / gate: the mission does not meet its criteria
+inline constexpr int kExitBadInput = 2;  ///< unreadable or invalid mission, world, models, flags
+inline constexpr int kExitFailed = 3;    ///< the command could not complete (e.g. runs failed)
+
+void register_simulate(CLI::App& app, int& exit_status);
+
+}  // namespace p3at::vipars
