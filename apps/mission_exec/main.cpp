@@ -78,6 +78,20 @@ void print_summary(const p3at::exec::RobotExecutive& exec) {
   std::fflush(stdout);
 }
 
+/// What the team link accepted and rejected, for scripts and for the record.
+void print_team_link_stats(const std::string& robot, const p3at::hal::TeamLinkStats& t) {
+  std::printf("event=team-link robot=%s sent=%llu retransmissions=%llu accepted=%llu acks_received=%llu "
+              "rejected_unknown_sender=%llu rejected_bad_tag=%llu rejected_replay=%llu rejected_other_mission=%llu "
+              "malformed=%llu\n",
+              robot.c_str(), static_cast<unsigned long long>(t.sent),
+              static_cast<unsigned long long>(t.retransmissions), static_cast<unsigned long long>(t.accepted),
+              static_cast<unsigned long long>(t.acks_received),
+              static_cast<unsigned long long>(t.rejected_unknown_sender),
+              static_cast<unsigned long long>(t.rejected_bad_tag), static_cast<unsigned long long>(t.rejected_replay),
+              static_cast<unsigned long long>(t.rejected_other_mission), static_cast<unsigned long long>(t.malformed));
+  std::fflush(stdout);
+}
+
 struct Options {
   std::string robot;
   std::string mission_file;
@@ -176,5 +190,6 @@ int main(int argc, char** argv) {
     p3at::log::warn("mission_exec", "event=disconnect-failed error=\"" + st.error().message + "\"");
   }
   print_summary(*exec);
+  print_team_link_stats(spec.name, (*team_link)->stats());
   return outcome.phase == p3at::exec::Phase::finished ? kExitOk : kExitAborted;
 }

@@ -139,6 +139,8 @@ RunResult TeamScenario::run(std::uint64_t run_index, std::uint64_t seed, const R
     r.odom_x_m = believed.x_m;
     r.odom_y_m = believed.y_m;
     r.dist_to_goal_m = std::hypot(r.true_x_m - goals_[i].x_m, r.true_y_m - goals_[i].y_m);
+    r.cycle_p50_us = e.stats().p50_us();
+    r.cycle_p99_us = e.stats().p99_us();
     if (e.outcome().phase != exec::Phase::finished) all_finished = false;
     if (e.outcome().phase == exec::Phase::aborted && first_abort.empty()) first_abort = r.name + ": " + r.reason;
     result.time_s = std::max(result.time_s, r.end_time_s);

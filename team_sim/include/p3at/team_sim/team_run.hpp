@@ -26,6 +26,8 @@ struct RobotResult {
   double true_x_m = 0.0, true_y_m = 0.0;  ///< true final position (world frame)
   double odom_x_m = 0.0, odom_y_m = 0.0;  ///< where it believed it was
   double dist_to_goal_m = 0.0;       ///< true distance to its final goal
+  double cycle_p50_us = 0.0;         ///< the executive's compute time per cycle (measured, not simulated)
+  double cycle_p99_us = 0.0;
 };
 
 struct RunResult {
