@@ -5,8 +5,7 @@
 # can-dev and vcan, creates vcan0 (and brings lo up), cds into BUILD_DIR and
 # runs the command there with can-utils on PATH. The command's exit status is
 # written to a file on the host and becomes this script's exit status; a
-# missing status (panic, crash, timeout) is a failure. docs/can-bus.md and
-# docs/testing-socketcan.md explain the setup.
+# missing status (panic, crash, timeout) is a failure. docs/can-bus.md explains the setup.
 #
 # Usage: scripts/run-socketcan-tests.sh [--timeout SECONDS] [--mem SIZE] BUILD_DIR [-- COMMAND...]
 #   default COMMAND: ctest -L socketcan --output-on-failure
@@ -23,7 +22,7 @@ mem="${P3AT_UML_MEM:-2G}"
 build_dir=""
 while [ $# -gt 0 ]; do
   case "$1" in
-    -h|--help) sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     --timeout) [ $# -ge 2 ] || die "--timeout needs a value"; timeout_s="$2"; shift 2 ;;
     --mem) [ $# -ge 2 ] || die "--mem needs a value"; mem="$2"; shift 2 ;;
     --) shift; break ;;
@@ -38,6 +37,11 @@ done
 build_dir="$(cd "$build_dir" && pwd -P)"
 [ -f "$build_dir/CTestTestfile.cmake" ] || die "'$build_dir' is not a CMake build tree (no CTestTestfile.cmake)"
 if [ $# -gt 0 ]; then cmd=("$@"); else cmd=(ctest -L socketcan --output-on-failure); fi
+# AddressSanitizer's shadow memory needs a 47-bit address space; UML gives a
+# process 39 bits (its stack sits below 0x7fc0000000), so ASan aborts at start.
+if grep -Eq '^P3AT_(SANITIZE|FUZZ):BOOL=(ON|1|TRUE)' "$build_dir/CMakeCache.txt"; then
+  die "'$build_dir' is built with AddressSanitizer, which cannot run inside user-mode Linux (its shadow memory needs a 47-bit address space, UML processes have 39 bits); use a build without P3AT_SANITIZE"
+fi
 
 # ---- prerequisites (Debian: user-mode-linux, busybox-static, can-utils, a C compiler)
 uml="${LINUX_UML:-$(command -v linux.uml || true)}"

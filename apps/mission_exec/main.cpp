@@ -22,7 +22,10 @@
 #include <optional>
 #include <string>
 
+#include "p3at/bridge/accessories/accessory_hub.hpp"
+#include "p3at/bridge/accessories/guarded_drive_base.hpp"
 #include "p3at/bridge/arcos_client.hpp"
+#include "p3at/hal/can_bus.hpp"
 #include "p3at/common/log.hpp"
 #include "p3at/executive/realtime_loop.hpp"
 #include "p3at/executive/robot_executive.hpp"
@@ -98,6 +101,7 @@ struct Options {
   std::optional<std::string> hal_url;
   std::optional<std::string> lcm_url;
   std::optional<std::string> team_key_file;
+  std::optional<std::string> can_url;
   std::uint64_t seed = 0;
   std::string log_level = "info";
   double linger_s = 5.0;
@@ -118,6 +122,8 @@ int main(int argc, char** argv) {
   app.add_option("--hal", opt.hal_url, "Robot URL: tcp://127.0.0.1:8101 or serial:///dev/ttyS0?baud=9600");
   app.add_option("--lcm", opt.lcm_url, "Team link LCM URL, e.g. udpm://239.255.76.67:7667?ttl=1");
   app.add_option("--team-key", opt.team_key_file, "Team key file (else $P3AT_TEAM_KEY names it)");
+  app.add_option("--can", opt.can_url,
+                 "CAN accessory bus (gyro, safety node), e.g. socketcan://can0 (docs/can-bus.md); default none");
   app.add_option("--seed", opt.seed, "Run seed for the NOISE schema (default 0)");
   app.add_option("--log-level", opt.log_level, "debug, info, warn or error (stderr)")
       ->check(CLI::IsMember({"debug", "info", "warn", "error"}));
@@ -157,12 +163,29 @@ int main(int argc, char** argv) {
   client_config.log_name = "bridge";
   p3at::bridge::ArcosClient robot([hal_url] { return p3at::hal::open_byte_stream(hal_url); }, clock, client_config);
 
+  // ---- optional CAN accessories: the safety node can stop the robot within one
+  // cycle and the gyro aids the heading; the executive then drives the guarded base.
+  std::unique_ptr<p3at::hal::CanBus> can_bus;
+  std::optional<p3at::bridge::AccessoryHub> hub;
+  std::optional<p3at::bridge::GuardedDriveBase> guarded;
+  if (opt.can_url) {
+    auto bus = p3at::hal::open_can_bus(*opt.can_url);
+    if (!bus) return bad_input("--can: " + bus.error().message);
+    can_bus = std::move(bus).value();
+    hub.emplace(*can_bus);
+    if (const auto st = hub->start(); !st) {
+      p3at::log::warn("mission_exec", "event=nmt-start-failed error=\"" + st.error().message + "\"");
+    }
+    guarded.emplace(robot, *hub, clock, [&robot] { return robot.enable_motors(true); });
+  }
+  p3at::hal::DriveBase& base = guarded ? static_cast<p3at::hal::DriveBase&>(*guarded) : robot;
+
   p3at::exec::ExecutiveOptions exec_options;
   exec_options.seed = opt.seed;
   exec_options.telemetry_every_cycles = opt.telemetry_every;
   std::optional<p3at::exec::RobotExecutive> exec;
   try {
-    exec.emplace(*mission, *robot_index, robot, **team_link, clock, exec_options);
+    exec.emplace(*mission, *robot_index, base, **team_link, clock, exec_options);
   } catch (const std::exception& e) {
     return bad_input(e.what());
   }
@@ -176,10 +199,21 @@ int main(int argc, char** argv) {
     return kExitAborted;
   }
 
+  if (guarded) {
+    // Motion only once the safety node reports clear and the latch is armed.
+    for (int i = 0; i < 20 && !guarded->verdict().clear; ++i) (void)guarded->wait_for_update(200);
+    if (const auto st = guarded->rearm(); !st) {
+      exec->abort("safety node not clear: " + st.error().message);
+      print_summary(*exec);
+      (void)robot.disconnect();
+      return kExitAborted;
+    }
+  }
+
   p3at::exec::RealtimeOptions loop_options;
   loop_options.linger_ms = static_cast<std::int64_t>(opt.linger_s * 1000.0);
   loop_options.interrupt_reason = "interrupted by signal";
-  const p3at::exec::Outcome outcome = p3at::exec::run_realtime(*exec, robot, g_stop, loop_options);
+  const p3at::exec::Outcome outcome = p3at::exec::run_realtime(*exec, base, g_stop, loop_options);
 
   // Status is best effort (UDP): repeat the final one so teammates hear it.
   for (int i = 0; i < 2; ++i) {

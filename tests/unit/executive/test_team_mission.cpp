@@ -86,8 +86,11 @@ void check_relay_run(Team& team) {
   CHECK(team.e1.state_name() == "done");
   CHECK(team.e2.state_name() == "done");
   // Perfect odometry: the believed pose is the true pose, within the AtGoal radius.
-  CHECK(std::hypot(team.e1.pose().x_m - 3.0, team.e1.pose().y_m - 1.0) <= 0.2);
-  CHECK(std::hypot(team.e2.pose().x_m - 3.0, team.e2.pose().y_m - 2.0) <= 0.2);
+  const auto goal_of = [](const RobotExecutive& e) {
+    return std::get<mission::GoToGuardedParams>(e.robot().states[*e.robot().find_state("drive")].behavior).goal;
+  };
+  CHECK(std::hypot(team.e1.pose().x_m - goal_of(team.e1).x_m, team.e1.pose().y_m - goal_of(team.e1).y_m) <= 0.2);
+  CHECK(std::hypot(team.e2.pose().x_m - goal_of(team.e2).x_m, team.e2.pose().y_m - goal_of(team.e2).y_m) <= 0.2);
   // The order of events: r1 arrives, r1's message is acknowledged, r2 starts, r2 arrives.
   REQUIRE(team.events.size() == 4);
   CHECK(team.events[0].robot == 0);

@@ -4,6 +4,7 @@
 /// the two things the drive base needs each cycle: a safety verdict and a
 /// gyro-aided pose. Bad input is counted and ignored, never fatal.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -112,7 +113,7 @@ class AccessoryHub {
   std::optional<can::NmtState> gyro_nmt_;
   std::int64_t last_gyro_frame_us_ = 0;
   std::int64_t last_safety_frame_us_ = 0;
-  std::int64_t last_nmt_sent_us_[2] = {INT64_MIN / 2, INT64_MIN / 2};  // gyro, safety
+  std::array<std::int64_t, 2> last_nmt_sent_us_{INT64_MIN / 2, INT64_MIN / 2};  // gyro, safety
 };
 
 }  // namespace p3at::bridge
