@@ -12,7 +12,6 @@
 #include "p3at/sim/radio.hpp"
 #include "p3at/sim/sim_drive_base.hpp"
 #include "p3at/sim/world.hpp"
-#include "p3at/team_sim/final_goal.hpp"
 
 namespace p3at::team_sim {
 namespace {
@@ -57,10 +56,7 @@ TeamScenario::TeamScenario(mission::Mission mission, const sim::WorldConfig& wor
     sim::RobotConfig robot = *it;
     robot.start = {spec.start.x_m, spec.start.y_m, spec.start.theta_deg * kPi / 180.0};
     world_.robots.push_back(robot);
-    std::string why;
-    const auto goal = final_goal(spec, &why);
-    if (!goal) throw std::invalid_argument(why);
-    goals_.push_back(*goal);
+    goals_.push_back(spec.goal);  // resolved by the mission loader
   }
 }
 

@@ -25,7 +25,7 @@ struct RobotResult {
   double end_time_s = 0.0;           ///< when its FSA ended (or the run's end)
   double true_x_m = 0.0, true_y_m = 0.0;  ///< true final position (world frame)
   double odom_x_m = 0.0, odom_y_m = 0.0;  ///< where it believed it was
-  double dist_to_goal_m = 0.0;       ///< true distance to its final goal
+  double dist_to_goal_m = 0.0;       ///< true distance to its goal (RobotSpec::goal)
   double cycle_p50_us = 0.0;         ///< the executive's compute time per cycle (measured, not simulated)
   double cycle_p99_us = 0.0;
 };
@@ -44,8 +44,7 @@ struct RunResult {
 
 /// Prepared once per campaign: the world with the mission's robots placed at
 /// their start poses, and each robot's final goal. Throws std::invalid_argument
-/// (naming the robot) when the world has no model for a mission robot or a
-/// robot has no final goal.
+/// (naming the robot) when the world has no model for a mission robot.
 class TeamScenario {
  public:
   TeamScenario(mission::Mission mission, const sim::WorldConfig& world);

@@ -150,6 +150,10 @@ struct Transition {
 struct RobotSpec {
   std::string name;
   Pose2 start;                                   ///< true starting pose, world frame
+  /// Where the robot must end, within Criteria::rmax_m (true position). Resolved:
+  /// as given; else the goal of the GoToGuarded states met first walking back
+  /// from every final state (the loader rejects them disagreeing); else start's x, y.
+  Point2 goal;
   std::string hal_url;                           ///< default HAL URL (a command line may override)
   std::string lcm_url{kDefaultLcmUrl};           ///< team link URL
   double max_speed_mps = kDefaultMaxSpeedMps;    ///< translational speed cap
