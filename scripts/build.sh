@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Configures and builds one flavour of the project into build/<flavour>.
-#   scripts/build.sh release   optimised with debug info (default)
+#   scripts/build.sh release   optimised, -O2, no debug info (default)
 #   scripts/build.sh asan      AddressSanitizer + UndefinedBehaviorSanitizer
 #   scripts/build.sh fuzz      clang + libFuzzer targets
 set -euo pipefail
@@ -8,10 +8,19 @@ cd "$(dirname "$0")/.."
 flavour="${1:-release}"
 jobs="$(nproc)"
 case "$flavour" in
-  release) cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo ;;
-  asan)    cmake -S . -B build/asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DP3AT_SANITIZE=ON -DP3AT_BUILD_BENCH=OFF ;;
+  # Optimised, without debug info: it builds in about half the time on 2 cores.
+  release) cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" ;;
+  # -O1 keeps sanitized tests quick; -g1 (line tables) is enough for ASan's stack traces.
+  asan)    cmake -S . -B build/asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
+             -DP3AT_SANITIZE=ON -DP3AT_BUILD_BENCH=OFF ;;
   fuzz)    CXX=clang++ cmake -S . -B build/fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DP3AT_FUZZ=ON \
              -DP3AT_BUILD_BENCH=OFF -DP3AT_FUZZ_SECONDS="${P3AT_FUZZ_SECONDS:-30}" ;;
   *) echo "usage: scripts/build.sh [release|asan|fuzz]" >&2; exit 2 ;;
 esac
-cmake --build "build/$flavour" -j "$jobs"
+if [ "$flavour" = fuzz ]; then
+  # Only the fuzzers: the rest of the tree is built and tested by the other flavours.
+  targets=$(sed -n 's/^p3at_add_fuzzer(\([a-z_]*\).*/\1/p' tests/fuzz/CMakeLists.txt)
+  cmake --build "build/$flavour" -j "$jobs" --target $targets
+else
+  cmake --build "build/$flavour" -j "$jobs"
+fi

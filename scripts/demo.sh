@@ -44,3 +44,9 @@ kill -TERM $sim_pid; wait $sim_pid 2>/dev/null || true
 echo
 echo "simulator log: $work/sim.log (last lines below)"
 tail -n 3 "$work/sim.log"
+
+echo
+echo "== the seed paper's Bounding Overwatch mission, whole team in fast time (200 runs)"
+"$bin/vipars" simulate examples/bounding_overwatch/mission.yaml --world examples/bounding_overwatch/world.yaml \
+  --runs 200 --csv "$work/bounding_overwatch.csv" | tail -n 4
+echo "one row per run: $work/bounding_overwatch.csv"

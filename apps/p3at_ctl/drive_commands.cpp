@@ -50,6 +50,25 @@ bool cycle(bridge::ArcosClient& robot, OdometryPrinter& printer) {
   return true;
 }
 
+// Commands a velocity and waits one cycle; false (after saying why) on failure.
+bool drive_cycle(bridge::ArcosClient& robot, OdometryPrinter& printer, double trans_mps, double rot_radps) {
+  if (auto st = robot.set_velocity(trans_mps, rot_radps); !st) {
+    std::fprintf(stderr, "p3at_ctl: %s\n", st.error().message.c_str());
+    return false;
+  }
+  return cycle(robot, printer);
+}
+
+// Stops, lets the robot come to rest so the final odometry is the final pose, prints it.
+int stop_and_report(bridge::ArcosClient& robot, OdometryPrinter& printer) {
+  (void)robot.stop();
+  for (int i = 0; i < 20 && std::fabs(robot.state().trans_vel_mps) + std::fabs(robot.state().rot_vel_radps) > 1e-3; ++i) {
+    if (!cycle(robot, printer)) return 1;
+  }
+  print_odometry(stdout, printer.elapsed_s(), robot.state());
+  return 0;
+}
+
 }  // namespace
 
 void print_odometry_header(std::FILE* out) {
@@ -69,19 +88,9 @@ int drive_constant(bridge::ArcosClient& robot, hal::Clock& clock, const DriveOpt
   OdometryPrinter printer(clock, options.print_every_s);
   print_odometry_header(stdout);
   while (printer.elapsed_s() < options.secs && !interrupted) {
-    if (auto st = robot.set_velocity(options.vel_mm_s / 1000.0, options.rotvel_deg_s * kPi / 180.0); !st) {
-      std::fprintf(stderr, "p3at_ctl: %s\n", st.error().message.c_str());
-      return 1;
-    }
-    if (!cycle(robot, printer)) return 1;
+    if (!drive_cycle(robot, printer, options.vel_mm_s / 1000.0, options.rotvel_deg_s * kPi / 180.0)) return 1;
   }
-  (void)robot.stop();
-  // Let the robot come to rest so the final odometry is the final pose.
-  for (int i = 0; i < 20 && std::fabs(robot.state().trans_vel_mps) + std::fabs(robot.state().rot_vel_radps) > 1e-3; ++i) {
-    if (!cycle(robot, printer)) return 1;
-  }
-  print_odometry(stdout, printer.elapsed_s(), robot.state());
-  return 0;
+  return stop_and_report(robot, printer);
 }
 
 int drive_square(bridge::ArcosClient& robot, hal::Clock& clock, const DriveOptions& options,
@@ -101,11 +110,7 @@ int drive_square(bridge::ArcosClient& robot, hal::Clock& clock, const DriveOptio
       if (remaining <= 0.01) break;
       const double v = std::clamp(remaining / 0.3 * speed, 0.05, speed);
       const double w = std::clamp(2.0 * wrap_pi(heading - p.theta_rad), -turn_rate, turn_rate);
-      if (auto st = robot.set_velocity(v, w); !st) {
-        std::fprintf(stderr, "p3at_ctl: %s\n", st.error().message.c_str());
-        return 1;
-      }
-      if (!cycle(robot, printer)) return 1;
+      if (!drive_cycle(robot, printer, v, w)) return 1;
     }
     // Turn 90° counter-clockwise in place.
     heading += kPi / 2;
@@ -114,19 +119,10 @@ int drive_square(bridge::ArcosClient& robot, hal::Clock& clock, const DriveOptio
       if (std::fabs(error) < 0.5 * kPi / 180.0) break;
       const double w = std::clamp(2.0 * error, -turn_rate, turn_rate);
       const double min_w = 3.0 * kPi / 180.0;  // the firmware's RVEL is in whole deg/s
-      if (auto st = robot.set_velocity(0.0, std::fabs(w) < min_w ? std::copysign(min_w, w) : w); !st) {
-        std::fprintf(stderr, "p3at_ctl: %s\n", st.error().message.c_str());
-        return 1;
-      }
-      if (!cycle(robot, printer)) return 1;
+      if (!drive_cycle(robot, printer, 0.0, std::fabs(w) < min_w ? std::copysign(min_w, w) : w)) return 1;
     }
   }
-  (void)robot.stop();
-  for (int i = 0; i < 20 && std::fabs(robot.state().trans_vel_mps) + std::fabs(robot.state().rot_vel_radps) > 1e-3; ++i) {
-    if (!cycle(robot, printer)) return 1;
-  }
-  print_odometry(stdout, printer.elapsed_s(), robot.state());
-  return 0;
+  return stop_and_report(robot, printer);
 }
 
 }  // namespace p3at::ctl

@@ -30,8 +30,13 @@ Vec2 to_local(const Pose& frame, Vec2 world) {
 
 std::optional<double> ray_cast(Vec2 origin, double heading_rad, std::span<const Segment> segments,
                                double max_range_m) {
-  const double dx = std::cos(heading_rad);
-  const double dy = std::sin(heading_rad);
+  return ray_cast_dir(origin, {std::cos(heading_rad), std::sin(heading_rad)}, segments, max_range_m);
+}
+
+std::optional<double> ray_cast_dir(Vec2 origin, Vec2 unit_direction, std::span<const Segment> segments,
+                                   double max_range_m) {
+  const double dx = unit_direction.x;
+  const double dy = unit_direction.y;
   std::optional<double> best;
   for (const Segment& s : segments) {
     const double ex = s.b.x - s.a.x;
@@ -76,10 +81,39 @@ bool segment_touches_box(Vec2 p0, Vec2 p1, double hx, double hy) {
 
 }  // namespace
 
+// Squared distance from point p to the segment a-b.
+double distance_sq_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+  const double ex = b.x - a.x;
+  const double ey = b.y - a.y;
+  const double len_sq = ex * ex + ey * ey;
+  double t = len_sq > 0.0 ? ((p.x - a.x) * ex + (p.y - a.y) * ey) / len_sq : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  const double dx = a.x + t * ex - p.x;
+  const double dy = a.y + t * ey - p.y;
+  return dx * dx + dy * dy;
+}
+
+namespace {
+
+// Half the diagonal, squared: no part of the box is farther than this from its centre.
+double half_diagonal_sq(const Footprint& f) { return (f.length_m * f.length_m + f.width_m * f.width_m) / 4.0; }
+
+}  // namespace
+
 bool intersects(const Footprint& footprint, const Segment& segment) {
-  const Vec2 a = to_local(footprint.pose, segment.a);
-  const Vec2 b = to_local(footprint.pose, segment.b);
-  return segment_touches_box(a, b, footprint.length_m / 2.0, footprint.width_m / 2.0);
+  // Broad phase without trigonometry: a segment farther from the centre than
+  // the half-diagonal cannot touch the box. Collision checks run every physics
+  // substep against every wall, so this is the simulator's hot path.
+  const Vec2 centre{footprint.pose.x_m, footprint.pose.y_m};
+  if (distance_sq_to_segment(centre, segment.a, segment.b) > half_diagonal_sq(footprint)) return false;
+  const double c = std::cos(footprint.pose.theta_rad);
+  const double s = std::sin(footprint.pose.theta_rad);
+  const auto local = [&](Vec2 w) {
+    const double dx = w.x - centre.x;
+    const double dy = w.y - centre.y;
+    return Vec2{c * dx + s * dy, -s * dx + c * dy};
+  };
+  return segment_touches_box(local(segment.a), local(segment.b), footprint.length_m / 2.0, footprint.width_m / 2.0);
 }
 
 void footprint_edges(const Footprint& footprint, Segment out[4]) {
@@ -91,6 +125,10 @@ void footprint_edges(const Footprint& footprint, Segment out[4]) {
 }
 
 bool intersects(const Footprint& first, const Footprint& second) {
+  const double reach = std::sqrt(half_diagonal_sq(first)) + std::sqrt(half_diagonal_sq(second));
+  const double dx = first.pose.x_m - second.pose.x_m;
+  const double dy = first.pose.y_m - second.pose.y_m;
+  if (dx * dx + dy * dy > reach * reach) return false;  // too far apart to touch
   // Two rectangles overlap iff an edge of one touches the other, or one contains
   // the other (and then the inner one's centre is inside the outer one).
   Segment edges[4];

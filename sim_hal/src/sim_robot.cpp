@@ -1,6 +1,7 @@
 #include "p3at/sim/sim_robot.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -91,13 +92,44 @@ void SimRobot::step(std::int64_t now_us, double dt_s, std::span<const Segment> w
   odometry_distance_m_ += distance;
 }
 
+namespace {
+// cos and sin of each sonar's mounting heading, computed once.
+struct SonarTrig {
+  std::array<double, kP3atSonars.size()> cos{}, sin{};
+  SonarTrig() {
+    for (std::size_t i = 0; i < kP3atSonars.size(); ++i) {
+      cos[i] = std::cos(kP3atSonars[i].heading_deg * kDegToRad);
+      sin[i] = std::sin(kP3atSonars[i].heading_deg * kDegToRad);
+    }
+  }
+};
+const SonarTrig kSonarTrig;
+const auto& kSonarCos = kSonarTrig.cos;
+const auto& kSonarSin = kSonarTrig.sin;
+}  // namespace
+
 void SimRobot::update_sonar(std::span<const Segment> obstacles) {
   const SonarModel& model = config_.sonar;
+  // Only obstacles within reach of some sonar can echo: every sonar sits within
+  // the footprint's half-diagonal of the centre and sees max_range_m beyond it.
+  // Filtering first keeps ray casting cheap in large worlds; results are unchanged.
+  const double reach = model.max_range_m + std::hypot(kP3atLengthM, kP3atWidthM) / 2.0;
+  const Vec2 centre{true_pose_.x_m, true_pose_.y_m};
+  nearby_.clear();
+  for (const Segment& s : obstacles) {
+    if (distance_sq_to_segment(centre, s.a, s.b) <= reach * reach) nearby_.push_back(s);
+  }
+  obstacles = nearby_;
+  // One sine and cosine of the heading for all 16 sonars (the sonar headings'
+  // own are constants): rotating is cheaper than 32 more trigonometric calls.
+  const double c = std::cos(true_pose_.theta_rad);
+  const double sn = std::sin(true_pose_.theta_rad);
   for (std::size_t i = 0; i < kP3atSonars.size(); ++i) {
     const SonarPose& s = kP3atSonars[i];
-    const Vec2 origin = to_world(true_pose_, {s.x_m, s.y_m});
-    const double heading = true_pose_.theta_rad + s.heading_deg * kDegToRad;
-    const auto hit = ray_cast(origin, heading, obstacles, model.max_range_m);
+    const Vec2 origin{true_pose_.x_m + c * s.x_m - sn * s.y_m, true_pose_.y_m + sn * s.x_m + c * s.y_m};
+    const double ch = kSonarCos[i];
+    const double sh = kSonarSin[i];
+    const auto hit = ray_cast_dir(origin, {c * ch - sn * sh, sn * ch + c * sh}, obstacles, model.max_range_m);
     sonar_m_[i] = hit ? std::clamp(*hit + rng_.gaussian(model.noise_sd_m), 0.0, model.max_range_m) : model.max_range_m;
   }
 }

@@ -67,6 +67,8 @@ class MemoryStream final : public hal::ByteStream {
   /// Largest number of bytes one read_some returns (to exercise split packets).
   std::size_t max_read_chunk = 4096;
   std::size_t written() const { return written_; }
+  /// True once the other end has closed (and this one has not).
+  bool peer_closed() const { return in_->closed && !closed_; }
 
  private:
   std::shared_ptr<PipeBuffer> in_;

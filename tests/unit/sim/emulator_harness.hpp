@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "memory_stream.hpp"
+#include "memory_stream.hpp"  // tests/support: the shared in-memory stream pair
 #include "p3at/protocols/arcos/commands.hpp"
 #include "p3at/protocols/arcos/decoder.hpp"
 #include "p3at/protocols/arcos/sip.hpp"
@@ -23,10 +23,10 @@ struct EmulatorHarness {
 
   /// A new client connection (the old client end is kept until replaced).
   void connect() {
-    auto [c, s] = make_stream_pair();
-    client = std::move(c);
+    p3at::test::MemoryPipe pipe;
+    client = pipe.make_a();
     decoder = arcos::PacketDecoder{};
-    fw.attach(std::move(s));
+    fw.attach(pipe.make_b());
   }
 
   void send(const arcos::Frame& frame) {
@@ -98,7 +98,7 @@ struct EmulatorHarness {
   World world;
   std::vector<std::string> logs;
   FirmwareEmulator fw;
-  std::unique_ptr<MemoryStream> client;
+  std::unique_ptr<p3at::test::MemoryStream> client;
   arcos::PacketDecoder decoder;
 };
 

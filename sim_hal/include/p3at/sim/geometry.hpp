@@ -38,6 +38,9 @@ Vec2 to_local(const Pose& frame, Vec2 world);
 /// segment it meets, if any is met within `max_range_m`.
 std::optional<double> ray_cast(Vec2 origin, double heading_rad, std::span<const Segment> segments,
                                double max_range_m);
+/// The same with the ray's unit direction given instead of its heading.
+std::optional<double> ray_cast_dir(Vec2 origin, Vec2 unit_direction, std::span<const Segment> segments,
+                                   double max_range_m);
 
 /// A robot footprint: a rectangle centred on `pose`, `length_m` along the heading,
 /// `width_m` across it.
@@ -46,6 +49,9 @@ struct Footprint {
   double length_m = 0.0;
   double width_m = 0.0;
 };
+
+/// Squared distance from point `p` to the segment a-b.
+double distance_sq_to_segment(Vec2 p, Vec2 a, Vec2 b);
 
 /// True when the segment touches or crosses the (closed) rectangle.
 bool intersects(const Footprint& footprint, const Segment& segment);

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <vector>
 #include <string>
 
 #include "p3at/sim/geometry.hpp"
@@ -66,6 +67,7 @@ class SimRobot {
   void step(std::int64_t now_us, double dt_s, std::span<const Segment> walls, std::span<const Footprint> others);
   /// Ray-casts every sonar against `obstacles` (walls and other robots' edges).
   void update_sonar(std::span<const Segment> obstacles);
+  std::vector<Segment> nearby_;  // obstacles within sonar reach, reused every cycle
 
  private:
   RobotConfig config_;
