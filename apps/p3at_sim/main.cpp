@@ -26,7 +26,7 @@ namespace {
 
 volatile std::sig_atomic_t g_stop = 0;
 
-extern "C" void on_signal(int) { g_stop = 1; }
+extern "C" void on_signal(int sig) { g_stop = sig; }
 
 void install_signal_handlers() {
   struct sigaction sa {};
@@ -144,7 +144,7 @@ int run(const Options& opt) {
       }
     }
   }
-  log_line("stop signal=1 sim_time_s=" + std::to_string(static_cast<double>(world.time_us()) / 1e6) +
+  log_line("stop signal=" + std::to_string(static_cast<int>(g_stop)) + " sim_time_s=" + std::to_string(static_cast<double>(world.time_us()) / 1e6) +
            " overruns=" + std::to_string(overruns));
   for (auto& f : firmware) log_line("stats robot=" + f->robot().name() + " " + p3at::sim::format_stats(f->stats()));
   return 0;
