@@ -55,23 +55,39 @@ inline std::string read_file(const std::string& path) {
 
 class ChildProcess {
  public:
-  /// Starts argv[0] with the rest as arguments; stdout and stderr go to `log_path`.
-  ChildProcess(std::vector<std::string> argv, std::string log_path) : log_path_(std::move(log_path)) {
+  /// Starts argv[0] (a path, or a name looked up in $PATH) with the rest as
+  /// arguments; stdout and stderr go to `log_path`. Stdin is /dev/null, or a
+  /// pipe that send_line() writes to when `with_stdin_pipe`.
+  ChildProcess(std::vector<std::string> argv, std::string log_path, bool with_stdin_pipe = false)
+      : log_path_(std::move(log_path)) {
+    int fds[2] = {-1, -1};
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
+    if (with_stdin_pipe) {
+      if (::pipe(fds) != 0) throw std::runtime_error("pipe failed");
+      posix_spawn_file_actions_adddup2(&actions, fds[0], 0);
+      posix_spawn_file_actions_addclose(&actions, fds[0]);
+      posix_spawn_file_actions_addclose(&actions, fds[1]);
+    } else {
+      posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+    }
     posix_spawn_file_actions_addopen(&actions, 1, log_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
     std::vector<char*> args;
     for (auto& a : argv) args.push_back(a.data());
     args.push_back(nullptr);
-    const int rc = posix_spawn(&pid_, args[0], &actions, nullptr, args.data(), environ);
+    const int rc = posix_spawnp(&pid_, args[0], &actions, nullptr, args.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
+    if (with_stdin_pipe) {
+      ::close(fds[0]);
+      stdin_fd_ = fds[1];
+    }
     if (rc != 0) throw std::runtime_error("cannot start " + argv[0]);
   }
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
   ~ChildProcess() {
+    close_stdin();
     if (running()) {
       signal(SIGKILL);
       (void)wait_exit(5.0);
@@ -84,12 +100,23 @@ class ChildProcess {
     while (std::chrono::steady_clock::now() < deadline) {
       if (log().find(needle) != std::string::npos) return true;
       if (!running()) return log().find(needle) != std::string::npos;
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     return false;
   }
 
   std::string log() const { return read_file(log_path_); }
+  const std::string& log_path() const { return log_path_; }
+
+  /// Writes one command line to the child's stdin (needs with_stdin_pipe).
+  bool send_line(const std::string& line) {
+    const std::string text = line + "\n";
+    return stdin_fd_ >= 0 && ::write(stdin_fd_, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+  }
+  void close_stdin() {
+    if (stdin_fd_ >= 0) ::close(stdin_fd_);
+    stdin_fd_ = -1;
+  }
 
   void signal(int sig) {
     if (pid_ > 0 && !exited_) ::kill(pid_, sig);
@@ -111,7 +138,7 @@ class ChildProcess {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
     while (running()) {
       if (std::chrono::steady_clock::now() > deadline) return -1;
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     if (WIFEXITED(status_)) return WEXITSTATUS(status_);
     if (WIFSIGNALED(status_)) return 128 + WTERMSIG(status_);
@@ -123,6 +150,7 @@ class ChildProcess {
  private:
   std::string log_path_;
   pid_t pid_ = -1;
+  int stdin_fd_ = -1;
   bool exited_ = false;
   int status_ = 0;
 };

@@ -19,6 +19,8 @@
 #include <thread>
 #include <vector>
 
+#include "child_process.hpp"
+
 extern char** environ;
 
 namespace p3at::test {
@@ -65,101 +67,22 @@ inline std::int64_t steady_us() {
       .count();
 }
 
-/// A child process whose stdin is a pipe we write lines to and whose stdout and
-/// stderr go to a log file. Killed and reaped on destruction.
-class Child {
+/// A child process (tests/support/child_process.hpp) whose log is a scratch
+/// file, removed when the child is reaped.
+class Child : public ChildProcess {
  public:
-  Child(std::vector<std::string> argv, bool with_stdin_pipe = false) : log_path_(scratch_file("child.log")) {
-    int fds[2] = {-1, -1};
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    if (with_stdin_pipe) {
-      if (::pipe(fds) != 0) throw std::runtime_error("pipe failed");
-      posix_spawn_file_actions_adddup2(&actions, fds[0], 0);
-      posix_spawn_file_actions_addclose(&actions, fds[0]);
-      posix_spawn_file_actions_addclose(&actions, fds[1]);
-    } else {
-      posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-    }
-    posix_spawn_file_actions_addopen(&actions, 1, log_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    std::vector<char*> args;
-    for (auto& a : argv) args.push_back(a.data());
-    args.push_back(nullptr);
-    const int rc = ::posix_spawnp(&pid_, args[0], &actions, nullptr, args.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    if (with_stdin_pipe) {
-      ::close(fds[0]);
-      stdin_fd_ = fds[1];
-    }
-    if (rc != 0) throw std::runtime_error("cannot start " + argv[0]);
-  }
+  explicit Child(std::vector<std::string> argv, bool with_stdin_pipe = false)
+      : ChildProcess(std::move(argv), scratch_file("child.log"), with_stdin_pipe) {}
   Child(const Child&) = delete;
   Child& operator=(const Child&) = delete;
   ~Child() {
     close_stdin();
     if (running()) {
-      ::kill(pid_, SIGKILL);
-      wait_exit(5.0);
+      signal(SIGKILL);
+      (void)wait_exit(5.0);
     }
-    std::remove(log_path_.c_str());
+    std::remove(log_path().c_str());
   }
-
-  /// Writes one command line to the child's stdin.
-  bool send_line(const std::string& line) {
-    const std::string text = line + "\n";
-    return stdin_fd_ >= 0 && ::write(stdin_fd_, text.data(), text.size()) == static_cast<ssize_t>(text.size());
-  }
-  void close_stdin() {
-    if (stdin_fd_ >= 0) ::close(stdin_fd_);
-    stdin_fd_ = -1;
-  }
-
-  std::string log() const { return read_text(log_path_); }
-
-  /// Waits until the log contains `needle`; false on timeout or exit without it.
-  bool wait_for_log(const std::string& needle, double timeout_s) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-    while (std::chrono::steady_clock::now() < deadline) {
-      if (log().find(needle) != std::string::npos) return true;
-      if (!running()) return log().find(needle) != std::string::npos;
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    return false;
-  }
-
-  void signal(int sig) {
-    if (!exited_) ::kill(pid_, sig);
-  }
-
-  bool running() {
-    if (exited_) return false;
-    int status = 0;
-    if (::waitpid(pid_, &status, WNOHANG) == pid_) {
-      exited_ = true;
-      status_ = status;
-    }
-    return !exited_;
-  }
-
-  /// Exit code (128 + signal when killed), or -1 on timeout.
-  int wait_exit(double timeout_s) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-    while (running()) {
-      if (std::chrono::steady_clock::now() > deadline) return -1;
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    if (WIFEXITED(status_)) return WEXITSTATUS(status_);
-    if (WIFSIGNALED(status_)) return 128 + WTERMSIG(status_);
-    return -1;
-  }
-
- private:
-  std::string log_path_;
-  pid_t pid_ = -1;
-  int stdin_fd_ = -1;
-  bool exited_ = false;
-  int status_ = 0;
 };
 
 }  // namespace p3at::test
