@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Builds the release flavour and runs every benchmark; each prints a table.
+# Builds the release flavour and runs every benchmark in full; each prints a
+# table (docs/benchmarks.md says what each measures). bench_verifier runs
+# without --quick, so its 32-robot relay cases make this take several minutes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh >/dev/null

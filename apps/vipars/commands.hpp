@@ -13,5 +13,10 @@ inline constexpr int kExitBadInput = 2;  ///< unreadable or invalid mission, wor
 inline constexpr int kExitFailed = 3;    ///< the command could not complete (e.g. runs failed)
 
 void register_simulate(CLI::App& app, int& exit_status);
+void register_translate(CLI::App& app, int& exit_status);
+void register_verify(CLI::App& app, int& exit_status);
+void register_calibrate(CLI::App& app, int& exit_status);
+void register_validate(CLI::App& app, int& exit_status);
+
 
 }  // namespace p3at::vipars

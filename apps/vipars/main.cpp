@@ -7,11 +7,20 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"vipars: performance guarantees for multirobot missions.\n"
-               "Simulate a mission in fast time against simulated P3-ATs; later: translate it to PARS, "
-               "verify it, calibrate models, validate the verification, and gate a launch."};
+               "Translate a mission to PARS, verify it against its criteria, simulate it in fast time, "
+               "calibrate robot models from data, and validate the verification with simulated trials."};
   app.require_subcommand(1);
   int exit_status = p3at::vipars::kExitOk;
+  p3at::vipars::register_translate(app, exit_status);
+  p3at::vipars::register_verify(app, exit_status);
   p3at::vipars::register_simulate(app, exit_status);
-  CLI11_PARSE(app, argc, argv);
+  p3at::vipars::register_calibrate(app, exit_status);
+  p3at::vipars::register_validate(app, exit_status);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version print and succeed; any other bad flag is bad input (exit 2).
+    return app.exit(e) == 0 ? p3at::vipars::kExitOk : p3at::vipars::kExitBadInput;
+  }
   return exit_status;
 }

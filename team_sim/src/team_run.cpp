@@ -29,15 +29,21 @@ hal::TeamKey simulation_key() {
 // Silences the executives' per-transition log lines for the run's duration.
 class LogThresholdGuard {
  public:
-  explicit LogThresholdGuard(bool verbose) : saved_(log::threshold()) {
-    if (!verbose && saved_ < log::Level::warn) log::threshold() = log::Level::warn;
+  // Writes the global threshold only when it has to change it, so runs on
+  // several threads (whose campaign lowered it once up front) never write it.
+  explicit LogThresholdGuard(bool verbose)
+      : saved_(log::threshold()), changed_(!verbose && saved_ < log::Level::warn) {
+    if (changed_) log::threshold() = log::Level::warn;
   }
-  ~LogThresholdGuard() { log::threshold() = saved_; }
+  ~LogThresholdGuard() {
+    if (changed_) log::threshold() = saved_;
+  }
   LogThresholdGuard(const LogThresholdGuard&) = delete;
   LogThresholdGuard& operator=(const LogThresholdGuard&) = delete;
 
  private:
   log::Level saved_;
+  bool changed_;
 };
 
 }  // namespace

@@ -3,6 +3,7 @@
 /// go_to_guarded_vector() is generic over the scalar type like schemas.hpp, so the
 /// verifier can use exactly the COOP the executive runs.
 
+#include <algorithm>
 #include <array>
 #include <span>
 
@@ -48,6 +49,10 @@ Velocity<S> go_to_guarded(const mission::GoToGuardedParams& params, const Pose<S
 }
 
 /// SPIN's command: rotate in place at the mission's rate, limited to ±max_rot_radps.
-Velocity<double> spin_command(const mission::SpinParams& params, const BehaviorConfig& config);
+inline Velocity<double> spin_command(const mission::SpinParams& params, const BehaviorConfig& config) {
+  constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+  const double rate_radps = std::clamp(params.rate_deg_s * kDegToRad, -config.max_rot_radps, config.max_rot_radps);
+  return Velocity<double>{0.0, rate_radps};
+}
 
 }  // namespace p3at::exec

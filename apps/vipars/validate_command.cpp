@@ -1,0 +1,403 @@
+// vipars validate MISSION --world FILE --trials N [--jobs J] [--seed S]
+//   [--tmax S] [--rmax M] [--tmax-range A:B:STEP] [--rmax-range A:B:STEP]
+//   [--region-low P] [--region-high P] [--timeout S] [--json] [--csv FILE]
+// The validation campaign (the seed paper's 100 real trials, in fast time):
+// the real executive against the simulated hardware, N independent runs on J
+// threads, and the fraction of runs that met the criteria, on the same
+// quantities and grid as `vipars verify`, with 95 % Wilson intervals.
+// docs/validation.md.
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "commands.hpp"
+#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/sim/world_config.hpp"
+#include "p3at/team_sim/campaign.hpp"
+#include "p3at/team_sim/empirical.hpp"
+#include "p3at/team_sim/run_table.hpp"
+#include "p3at/team_sim/team_run.hpp"
+#include "range_arg.hpp"
+
+namespace p3at::vipars {
+namespace {
+
+using Json = nlohmann::ordered_json;  // keys in the documented order
+
+// Every run's result is kept (a few hundred bytes) until the report: 1e6 runs
+// stay well under a gigabyte, and take hours anyway.
+constexpr std::uint64_t kMaxTrials = 1'000'000;
+constexpr unsigned kMaxJobs = 1024;
+
+struct ValidateOptions {
+  std::string mission_file;
+  std::string world_file;
+  std::uint64_t trials = 0;
+  unsigned jobs = 0;  // 0: hardware concurrency
+  std::uint64_t seed = 1;
+  double tmax_s = 0.0;  // used when given (CLI::Option::count)
+  double rmax_m = 0.0;
+  bool tmax_given = false;
+  bool rmax_given = false;
+  std::string tmax_range;
+  std::string rmax_range;
+  double region_low = 0.05;
+  double region_high = 0.95;
+  double timeout_s = 900.0;
+  bool json = false;
+  std::string csv_file;
+};
+
+// Everything a report needs, computed once.
+struct Report {
+  std::string mission_name;
+  double threshold = 0.0;
+  team_sim::EmpiricalPoint point;
+  std::optional<team_sim::EmpiricalGrid> grid;
+  std::vector<std::pair<std::string, std::uint64_t>> failures;  // outcome, count; most frequent first
+};
+
+int bad_input(const std::string& message) {
+  std::fprintf(stderr, "vipars validate: %s\n", message.c_str());
+  return kExitBadInput;
+}
+
+// The flags' values that the parser's own checks cannot express; the message
+// says which flag and what was expected.
+std::optional<std::string> check_options(const ValidateOptions& o) {
+  if (o.trials < 1 || o.trials > kMaxTrials) {
+    return "--trials: expected 1.." + std::to_string(kMaxTrials) + ", got " + std::to_string(o.trials);
+  }
+  if (o.jobs > kMaxJobs) return "--jobs: expected 0 (all cores).." + std::to_string(kMaxJobs);
+  if (o.tmax_given && !(o.tmax_s > 0.0 && std::isfinite(o.tmax_s))) return "--tmax: expected seconds > 0";
+  if (o.rmax_given && !(o.rmax_m > 0.0 && std::isfinite(o.rmax_m))) return "--rmax: expected metres > 0";
+  if (!(o.region_low >= 0.0 && o.region_low <= o.region_high && o.region_high <= 1.0)) {
+    return "--region-low/--region-high: expected 0 <= low <= high <= 1";
+  }
+  if (!(o.timeout_s > 0.0 && o.timeout_s <= 1e6)) return "--timeout: expected simulated seconds in (0, 1e6]";
+  return std::nullopt;
+}
+
+// Outcomes of the failed runs, grouped; most frequent first, then by text,
+// so the report is the same whatever order the runs finished in.
+std::vector<std::pair<std::string, std::uint64_t>> group_failures(const std::vector<team_sim::RunResult>& runs) {
+  std::map<std::string, std::uint64_t> counts;
+  for (const auto& r : runs) {
+    if (!r.success()) ++counts[r.outcome];
+  }
+  std::vector<std::pair<std::string, std::uint64_t>> sorted(counts.begin(), counts.end());
+  std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  return sorted;
+}
+
+// The per-run table: run_table's columns plus each robot's final phase
+// ("finished", "aborted", "running" when the run timed out).
+std::string validation_csv_header(const mission::Mission& mission) {
+  std::string header = team_sim::csv_header(mission);
+  for (const auto& r : mission.robots) header += ",phase_" + r.name;
+  return header;
+}
+
+std::string validation_csv_row(const team_sim::RunResult& run) {
+  std::string row = team_sim::csv_row(run);
+  for (const auto& r : run.robots) row += "," + r.phase;
+  return row;
+}
+
+// Progress on a terminal: a bar, runs/s and the time left, redrawn in place.
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled) : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+
+  void update(std::uint64_t done, std::uint64_t total) {
+    if (!enabled_) return;
+    constexpr int kWidth = 30;
+    const double secs = elapsed_s();
+    const double rate = secs > 0 ? static_cast<double>(done) / secs : 0.0;
+    const auto filled = static_cast<int>(static_cast<double>(kWidth) * static_cast<double>(done) /
+                                         static_cast<double>(std::max<std::uint64_t>(total, 1)));
+    std::string bar(static_cast<std::size_t>(filled), '#');
+    bar.resize(kWidth, '.');
+    std::fprintf(stderr, "\r[%s] %llu/%llu runs  %.1f runs/s  ", bar.c_str(), static_cast<unsigned long long>(done),
+                 static_cast<unsigned long long>(total), rate);
+    if (rate > 0 && done < total) {
+      const auto left = static_cast<long long>(static_cast<double>(total - done) / rate + 0.5);
+      std::fprintf(stderr, "%lld:%02lld left   ", left / 60, left % 60);
+    } else {
+      std::fprintf(stderr, "          ");
+    }
+    if (done == total) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+  }
+
+  double elapsed_s() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  bool enabled_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+// ---- JSON (the keys `vipars verify` uses too) ----
+
+void put_estimate(Json& j, const std::string& key, const team_sim::Estimate& e) {
+  j[key] = e.p;
+  j[key + "_ci_low"] = e.ci_low;
+  j[key + "_ci_high"] = e.ci_high;
+}
+
+Json optional_number(const std::optional<double>& value) { return value ? Json(*value) : Json(nullptr); }
+
+Json grid_to_json(const team_sim::EmpiricalGrid& g, const ValidateOptions& o) {
+  const auto field = [](const std::vector<team_sim::Estimate>& v, double team_sim::Estimate::*member) {
+    Json out = Json::array();
+    for (const auto& e : v) out.push_back(e.*member);
+    return out;
+  };
+  const auto table = [&](double team_sim::Estimate::*member) {
+    Json out = Json::array();
+    for (const auto& row : g.joint) out.push_back(field(row, member));
+    return out;
+  };
+  Json regions = Json::array();
+  for (const auto& row : g.joint) {
+    Json r = Json::array();
+    for (const auto& e : row) r.push_back(team_sim::to_string(team_sim::classify(e.p, o.region_low, o.region_high)));
+    regions.push_back(std::move(r));
+  }
+  Json j;
+  j["tmax"] = g.tmax;
+  j["rmax"] = g.rmax;
+  j["p_time"] = field(g.time, &team_sim::Estimate::p);
+  j["p_radius"] = field(g.radius, &team_sim::Estimate::p);
+  j["p_joint"] = table(&team_sim::Estimate::p);
+  j["region"] = std::move(regions);
+  j["p_time_ci_low"] = field(g.time, &team_sim::Estimate::ci_low);
+  j["p_time_ci_high"] = field(g.time, &team_sim::Estimate::ci_high);
+  j["p_radius_ci_low"] = field(g.radius, &team_sim::Estimate::ci_low);
+  j["p_radius_ci_high"] = field(g.radius, &team_sim::Estimate::ci_high);
+  j["p_joint_ci_low"] = table(&team_sim::Estimate::ci_low);
+  j["p_joint_ci_high"] = table(&team_sim::Estimate::ci_high);
+  return j;
+}
+
+Json report_to_json(const Report& r, const ValidateOptions& o) {
+  const auto& p = r.point;
+  Json j;
+  j["mission"] = r.mission_name;
+  j["tmax_s"] = p.tmax_s;
+  j["rmax_m"] = p.rmax_m;
+  j["threshold"] = r.threshold;
+  put_estimate(j, "p_time", p.time);
+  put_estimate(j, "p_radius", p.radius);
+  put_estimate(j, "p_joint", p.joint);
+  j["runs"] = p.runs;
+  j["failed_runs"] = p.failed_runs;
+  j["robots"] = Json::array();
+  for (const auto& robot : p.robots) {
+    Json jr;
+    jr["name"] = robot.name;
+    put_estimate(jr, "p_radius", robot.radius);
+    jr["dist_mean_m"] = robot.dist_mean_m;
+    jr["dist_sd_m"] = robot.dist_sd_m;
+    j["robots"].push_back(std::move(jr));
+  }
+  j["completion_mean_s"] = optional_number(p.completion_mean_s);
+  j["completion_sd_s"] = optional_number(p.completion_sd_s);
+  if (r.grid) j["grid"] = grid_to_json(*r.grid, o);
+  j["seed"] = o.seed;
+  j["world"] = o.world_file;
+  j["mission_file"] = o.mission_file;
+  return j;
+}
+
+// ---- text ----
+
+std::string number(double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", value);
+  return buf;
+}
+
+void print_estimate(const std::string& label, const team_sim::Estimate& e) {
+  std::printf("  %-28s %.3f  [%.3f, %.3f]  (%llu/%llu)\n", label.c_str(), e.p, e.ci_low, e.ci_high,
+              static_cast<unsigned long long>(e.count), static_cast<unsigned long long>(e.runs));
+}
+
+void print_grid(const team_sim::EmpiricalGrid& g, const ValidateOptions& o) {
+  std::printf("\nP(t <= tmax and every r <= rmax): rows tmax (s), columns rmax (m)\n");
+  std::printf("%8s %5s |", "tmax", "P(t)");
+  for (double r : g.rmax) std::printf(" %5s", number(r).c_str());
+  std::printf("\n");
+  for (std::size_t a = 0; a < g.tmax.size(); ++a) {
+    std::printf("%8s %5.2f |", number(g.tmax[a]).c_str(), g.time[a].p);
+    for (const auto& e : g.joint[a]) std::printf(" %5.2f", e.p);
+    std::printf("\n");
+  }
+  std::printf("%8s %5s |", "P(r)", "");
+  for (const auto& e : g.radius) std::printf(" %5.2f", e.p);
+  std::printf("\n\nregions, columns rmax %s .. %s m as above: '-' unsuccessful (P < %g), '?' uncertain, "
+              "'+' successful (P >= %g)\n",
+              g.rmax.empty() ? "" : number(g.rmax.front()).c_str(), g.rmax.empty() ? "" : number(g.rmax.back()).c_str(),
+              o.region_low, o.region_high);
+  for (std::size_t a = 0; a < g.tmax.size(); ++a) {
+    std::printf("%8s  ", number(g.tmax[a]).c_str());
+    for (const auto& e : g.joint[a]) {
+      switch (team_sim::classify(e.p, o.region_low, o.region_high)) {
+        case team_sim::Region::unsuccessful: std::printf("-"); break;
+        case team_sim::Region::uncertain: std::printf("?"); break;
+        case team_sim::Region::successful: std::printf("+"); break;
+      }
+    }
+    std::printf("\n");
+  }
+}
+
+void print_text(const Report& r, const ValidateOptions& o) {
+  const auto& p = r.point;
+  std::printf("validation of %s: %llu runs from seed %llu, %llu failed\n", r.mission_name.c_str(),
+              static_cast<unsigned long long>(p.runs), static_cast<unsigned long long>(o.seed),
+              static_cast<unsigned long long>(p.failed_runs));
+  for (const auto& [outcome, count] : r.failures) {
+    std::printf("  %llu x %s\n", static_cast<unsigned long long>(count), outcome.c_str());
+  }
+  std::printf("criteria: tmax %s s, rmax %s m, threshold %s\n", number(p.tmax_s).c_str(), number(p.rmax_m).c_str(),
+              number(r.threshold).c_str());
+  std::printf("\n  %-28s %-5s  %-14s  %s\n", "probability", "p", "95% Wilson CI", "(runs)");
+  print_estimate("P(t <= " + number(p.tmax_s) + " s)", p.time);
+  print_estimate("P(every r <= " + number(p.rmax_m) + " m)", p.radius);
+  print_estimate("P(both) = P(success)", p.joint);
+  for (const auto& robot : p.robots) print_estimate("P(" + robot.name + " r <= " + number(p.rmax_m) + " m)", robot.radius);
+  std::printf("\n");
+  if (p.completion_mean_s) {
+    std::printf("completion time (successful runs): mean %.1f s, sd %.1f s\n", *p.completion_mean_s,
+                *p.completion_sd_s);
+  }
+  for (const auto& robot : p.robots) {
+    std::printf("%s: true distance to goal mean %.2f m, sd %.2f m\n", robot.name.c_str(), robot.dist_mean_m,
+                robot.dist_sd_m);
+  }
+  std::printf("P(success) %s the threshold %s\n", p.joint.p >= r.threshold ? "meets" : "is below",
+              number(r.threshold).c_str());
+  if (r.grid) print_grid(*r.grid, o);
+}
+
+int validate(ValidateOptions o) {
+  if (auto problem = check_options(o)) return bad_input(*problem);
+  std::optional<team_sim::TeamScenario> scenario;
+  try {
+    scenario.emplace(mission::load_mission_file(o.mission_file), sim::load_world_file(o.world_file));
+  } catch (const std::exception& e) {
+    return bad_input(e.what());
+  }
+  const mission::Criteria& criteria = scenario->mission().criteria;
+  if (!o.tmax_given) o.tmax_s = criteria.tmax_s;
+  if (!o.rmax_given) o.rmax_m = criteria.rmax_m;
+  std::vector<double> tmax_axis{o.tmax_s}, rmax_axis{o.rmax_m};
+  for (auto [flag, text, axis] : {std::tuple{"--tmax-range", &o.tmax_range, &tmax_axis},
+                                  std::tuple{"--rmax-range", &o.rmax_range, &rmax_axis}}) {
+    if (text->empty()) continue;
+    auto parsed = parse_range(*text);
+    if (!parsed) return bad_input(std::string(flag) + ": " + parsed.error().message);
+    *axis = std::move(parsed).value();
+  }
+
+  std::ofstream csv;
+  if (!o.csv_file.empty()) {
+    csv.open(o.csv_file);
+    if (!csv) return bad_input("cannot write " + o.csv_file);
+  }
+
+  team_sim::CampaignOptions campaign;
+  campaign.runs = o.trials;
+  campaign.seed = o.seed;
+  campaign.jobs = o.jobs;
+  campaign.run.timeout_s = o.timeout_s;
+  const unsigned jobs = team_sim::campaign_jobs(campaign);
+  ProgressBar bar(isatty(STDERR_FILENO) != 0);
+  std::vector<team_sim::RunResult> runs;
+  try {
+    runs = team_sim::run_campaign(*scenario, campaign,
+                                  [&bar](std::uint64_t done, std::uint64_t total) { bar.update(done, total); });
+  } catch (const std::exception& e) {
+    // A run throws only when the simulator cannot be built from the world
+    // file (e.g. radio parameters): bad input, the same for every run.
+    return bad_input(e.what());
+  }
+  const double wall_s = bar.elapsed_s();
+
+  if (csv.is_open()) {
+    csv << validation_csv_header(scenario->mission()) << "\n";
+    for (const auto& run : runs) csv << validation_csv_row(run) << "\n";
+    csv.flush();
+    if (!csv) return bad_input("cannot write " + o.csv_file);
+  }
+
+  Report report;
+  report.mission_name = scenario->mission().name;
+  report.threshold = criteria.threshold;
+  report.point = team_sim::empirical_at(runs, o.tmax_s, o.rmax_m);
+  if (!o.tmax_range.empty() || !o.rmax_range.empty()) report.grid = team_sim::empirical_grid(runs, tmax_axis, rmax_axis);
+  report.failures = group_failures(runs);
+
+  if (o.json) {
+    std::cout << report_to_json(report, o).dump(2) << "\n";
+  } else {
+    print_text(report, o);
+  }
+  std::cout.flush();
+  // One grep-able line for logs; on stderr so stdout stays identical across runs.
+  std::fprintf(stderr, "vipars validate: runs=%llu failed=%llu jobs=%u wall_s=%.2f runs_per_s=%.1f\n",
+               static_cast<unsigned long long>(report.point.runs),
+               static_cast<unsigned long long>(report.point.failed_runs), jobs, wall_s,
+               wall_s > 0 ? static_cast<double>(report.point.runs) / wall_s : 0.0);
+  return report.point.failed_runs == report.point.runs ? kExitFailed : kExitOk;
+}
+
+}  // namespace
+
+void register_validate(CLI::App& app, int& exit_status) {
+  auto o = std::make_shared<ValidateOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "validate", "Validation campaign: N fast-time runs of the real executive, empirical P(success) with 95% CIs");
+  cmd->add_option("mission", o->mission_file, "Mission file (YAML)")->required();
+  cmd->add_option("--world", o->world_file, "World file: walls, robots' error models, radio")->required();
+  cmd->add_option("--trials", o->trials, "Number of independent runs")->required();
+  cmd->add_option("--jobs", o->jobs, "Worker threads (default: all cores); the results do not depend on it");
+  cmd->add_option("--seed", o->seed, "Campaign seed; run i's seed is the i-th SplitMix64 output from it")
+      ->capture_default_str();
+  CLI::Option* tmax = cmd->add_option("--tmax", o->tmax_s, "Time bound in seconds (default: the mission's tmax_s)");
+  CLI::Option* rmax = cmd->add_option("--rmax", o->rmax_m, "Radius bound in metres (default: the mission's rmax_m)");
+  cmd->add_option("--tmax-range", o->tmax_range, "Grid axis A:B:STEP in seconds (B included when on a step)");
+  cmd->add_option("--rmax-range", o->rmax_range, "Grid axis A:B:STEP in metres (B included when on a step)");
+  cmd->add_option("--region-low", o->region_low, "Grid cells with P(success) below this are 'unsuccessful'")
+      ->capture_default_str();
+  cmd->add_option("--region-high", o->region_high, "Grid cells with P(success) at or above this are 'successful'")
+      ->capture_default_str();
+  cmd->add_option("--timeout", o->timeout_s, "Simulated seconds before a run counts as failed (timeout)")
+      ->capture_default_str();
+  cmd->add_flag("--json", o->json, "Print the result as JSON (the keys of `vipars verify --json`)");
+  cmd->add_option("--csv", o->csv_file, "Write one row per run to this CSV file");
+  cmd->callback([o, tmax, rmax, &exit_status] {
+    o->tmax_given = tmax->count() > 0;
+    o->rmax_given = rmax->count() > 0;
+    exit_status = validate(*o);
+  });
+}
+
+}  // namespace p3at::vipars

@@ -1,0 +1,17 @@
+#pragma once
+// How a VerifyResult is shown: JSON for machines (keys shared with
+// `vipars validate`, docs/verifier.md) and readable text for people.
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/verifier/verify.hpp"
+
+namespace p3at::vipars {
+
+nlohmann::json verify_json(const mission::Mission& mission, const verifier::VerifyResult& result);
+/// The probabilities, per-robot predictions, decision and (if any) the grid as a small table.
+std::string verify_text(const mission::Mission& mission, const verifier::VerifyResult& result);
+
+}  // namespace p3at::vipars

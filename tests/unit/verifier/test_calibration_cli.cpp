@@ -1,0 +1,202 @@
+// `vipars calibrate` as a user runs it (the built binary): fast-time
+// manoeuvres on simulated robots whose odometry errors this test chose, so
+// the fitted scales and drift can be checked against what those errors
+// imply (docs/simulator.md: "Expected consequences"); the models file loads
+// with its walls by reference; the log it writes gives the same models when
+// fitted again with --from-log; bad input exits 2 naming the place.
+//
+// The binary: P3AT_VIPARS_BIN when the build defines it, else `vipars`
+// beside this test's own executable (every binary lands in <build>/bin).
+
+#include <doctest/doctest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+#include "p3at/verifier/calibration.hpp"
+#include "p3at/verifier/models.hpp"
+
+namespace {
+
+// Relative closeness (doctest's Approx alone adds an absolute 1 to its scale).
+doctest::Approx near(double expected, double relative) {
+  return doctest::Approx(expected).epsilon(relative).scale(0.0);
+}
+
+namespace fs = std::filesystem;
+constexpr double kDeg = std::numbers::pi / 180.0;
+// The P3-AT firmware's track: 2 / DiffConvFactor 0.0034, in metres.
+constexpr double kTrackM = 2.0 / 0.0034 / 1000.0;
+
+std::string vipars_binary() {
+#ifdef P3AT_VIPARS_BIN
+  return P3AT_VIPARS_BIN;
+#else
+  return (fs::read_symlink("/proc/self/exe").parent_path() / "vipars").string();
+#endif
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct Outcome {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+Outcome vipars(const fs::path& dir, const std::string& args) {
+  const fs::path out = dir / "stdout.txt";
+  const fs::path err = dir / "stderr.txt";
+  const std::string command = "cd '" + dir.string() + "' && '" + vipars_binary() + "' " + args + " >'" + out.string() +
+                              "' 2>'" + err.string() + "'";
+  const int raw = std::system(command.c_str());
+  Outcome o;
+  o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  o.out = read_file(out);
+  o.err = read_file(err);
+  return o;
+}
+
+// Two robots with known systematic errors, and walls around them that a
+// 4 m run would hit: calibration must run on open floor.
+constexpr const char* kWorld = R"(seed: 5
+walls:
+  - [-1.5, -1.5, 3.0, -1.5]
+  - [-1.5, 1.5, 3.0, 1.5]
+  - [3.0, -1.5, 3.0, 1.5]
+defaults:
+  odometry: {random_trans_per_unit: 0.01, random_rot_per_unit: 0.01}
+radio: {latency_min_ms: 1, latency_median_ms: 4, latency_sigma: 0.4, slow_probability: 0.1, slow_median_ms: 60, slow_sigma: 0.3}
+robots:
+  - name: wheels        # tyres 5 % small: every distance and turn really 1/1.05 of the odometry's
+    x_m: 0
+    y_m: -0.7
+    odometry: {left_scale: 1.05, right_scale: 1.05}
+  - name: pulls_right   # right tyre over-reports 2 %, track slips 10 %
+    x_m: 0
+    y_m: 0.7
+    odometry: {right_scale: 1.02, track_ratio: 1.1}
+)";
+
+struct Scratch {
+  Scratch() : dir(fs::temp_directory_path() / ("p3at-calibrate-cli-" + std::to_string(::getpid()))) {
+    fs::create_directories(dir);
+    std::ofstream(dir / "world.yaml") << kWorld;
+  }
+  ~Scratch() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+  fs::path dir;
+};
+
+}  // namespace
+
+TEST_CASE("simulated robots: the fitted scales and drift are those the world's odometry errors imply") {
+  Scratch s;
+  REQUIRE_MESSAGE(fs::exists(vipars_binary()), "build the vipars target first: " << vipars_binary());
+  const Outcome o = vipars(s.dir, "calibrate --world world.yaml --runs 8 --messages 300 --out models.yaml --log-out runs.csv");
+  INFO(o.err);
+  REQUIRE(o.status == 0);
+  CHECK(o.out.empty());  // the models went to --out
+  CHECK(o.err.find("wheels: 16 straight runs and 32 spins with true poses") != std::string::npos);
+  CHECK(o.err.find("delivery_ms: 300 messages") != std::string::npos);
+
+  const std::string text = read_file(s.dir / "models.yaml");
+  CHECK(text.find("#   vipars calibrate --world world.yaml --runs 8 --speed 0.3 ") != std::string::npos);  // the header says how to regenerate it
+  CHECK(text.find("  walls_from: world.yaml\n") != std::string::npos);
+  const p3at::verifier::Models m = p3at::verifier::load_models_file((s.dir / "models.yaml").string());
+  CHECK(m.environment.walls.size() == 3);
+  REQUIRE(m.robots.size() == 2);
+
+  const p3at::verifier::RobotModel* wheels = m.find_robot("wheels");
+  REQUIRE(wheels != nullptr);
+  CHECK(wheels->motion.trans_scale == near(1.0 / 1.05, 0.003));
+  CHECK(wheels->motion.rot_scale == near(1.0 / 1.05, 0.003));
+  CHECK(std::abs(wheels->motion.drift_rad_per_m) < 0.05 * kDeg);
+
+  // Right wheel really travels 1/1.02 of what the encoders say, on a track
+  // 1.1 times the nominal T: the robot curves right by (1 - 1/1.02) / (1.1 T)
+  // per odometric metre, covers (1 + 1/1.02) / 2 of the distance, and turns
+  // (1 + 1/1.02) / 2 / 1.1 of the odometric angle.
+  const p3at::verifier::RobotModel* pulls = m.find_robot("pulls_right");
+  REQUIRE(pulls != nullptr);
+  const double mean_wheel = (1.0 + 1.0 / 1.02) / 2.0;
+  CHECK(pulls->motion.trans_scale == near(mean_wheel, 0.003));
+  CHECK(pulls->motion.rot_scale == near(mean_wheel / 1.1, 0.003));
+  CHECK(pulls->motion.drift_rad_per_m == near(-(1.0 - 1.0 / 1.02) / (1.1 * kTrackM), 0.02));
+
+  // The random part: per-cycle relative errors of 1 %, seen relative to the true motion.
+  for (const auto* r : {wheels, pulls}) {
+    const double trans_sd = std::sqrt(r->motion.trans_rel_var + r->motion.trans_var_per_m / 0.03);
+    CHECK(trans_sd / r->motion.trans_scale == near(0.01, 0.35));
+  }
+  // The simulated firmware's limits (docs/simulator.md defaults).
+  CHECK(wheels->kinematics.cycle_s == 0.1);
+  CHECK(wheels->kinematics.trans_accel_mps2 == near(0.3, 0.05));
+  CHECK(wheels->kinematics.trans_decel_mps2 == near(0.6, 0.05));
+  CHECK(wheels->kinematics.max_rot_vel_radps / kDeg == near(43.0, 0.01));
+  // Delays: at least the radio's minimum, and an ack needs the recipient's next cycle.
+  REQUIRE_FALSE(m.comm.delivery_s.components.empty());
+  CHECK(m.comm.delivery_s.mean() > 0.001);
+  CHECK(m.comm.delivery_s.mean() < 0.05);
+  CHECK(m.comm.ack_s.mean() > 0.1);
+  CHECK(m.comm.ack_s.mean() < 0.2);
+
+  // The log it wrote is a valid calibration log, and fitting it again gives the same models.
+  const p3at::verifier::CalibrationLog log = p3at::verifier::load_calibration_log((s.dir / "runs.csv").string());
+  CHECK(log.manoeuvres.size() == 2 * 8 * 6);
+  CHECK(log.messages.size() == 300);
+  const Outcome again = vipars(s.dir, "calibrate --from-log runs.csv --world world.yaml --out again.yaml");
+  REQUIRE(again.status == 0);
+  p3at::verifier::Models m2 = p3at::verifier::load_models_file((s.dir / "again.yaml").string());
+  CHECK(m2.generated_by == "vipars calibrate --world world.yaml --from-log runs.csv --out again.yaml");
+  m2.generated_by = m.generated_by;
+  m2.source = m.source;
+  CHECK(m2 == m);
+  // --robots picks robots out of a log.
+  const Outcome one = vipars(s.dir, "calibrate --from-log runs.csv --robots pulls_right");
+  REQUIRE(one.status == 0);
+  CHECK(one.out.find("name: pulls_right") != std::string::npos);
+  CHECK(one.out.find("name: wheels") == std::string::npos);
+}
+
+TEST_CASE("bad input: exit 2 and a message that names the problem") {
+  Scratch s;
+  const Outcome missing = vipars(s.dir, "calibrate --world world.yaml --robots wheels,nobody --runs 2");
+  CHECK(missing.status == 2);
+  CHECK(missing.err.find("world.yaml has no robot named 'nobody'") != std::string::npos);
+
+  std::ofstream(s.dir / "bad.csv") << p3at::verifier::write_calibration_log({}) << "wheels,0,straight,0,fast,0,0,0,0,,,,,,\n";
+  const Outcome bad = vipars(s.dir, "calibrate --from-log bad.csv");
+  CHECK(bad.status == 2);
+  CHECK(bad.err.find("bad.csv:2:21: expected a finite number for 'cmd_trans_mps', got 'fast'") != std::string::npos);
+
+  std::ofstream(s.dir / "thin.csv") << p3at::verifier::write_calibration_log({})
+                                     << "wheels,0,straight,0,0.3,0,0,0,0,0,0,0,,,\n"
+                                     << "wheels,0,straight,1,0,0,0.3,0,0,0.29,0,0,,,\n";
+  const Outcome thin = vipars(s.dir, "calibrate --from-log thin.csv");
+  CHECK(thin.status == 2);
+  CHECK(thin.err.find("wheels: 1 straight run(s) and 0 spin(s) with true poses at both ends") != std::string::npos);
+
+  const Outcome neither = vipars(s.dir, "calibrate");
+  CHECK(neither.status == 2);
+  CHECK(neither.err.find("give --world FILE") != std::string::npos);
+
+  const Outcome blind = vipars(s.dir, "calibrate --hal tcp://127.0.0.1:1 --robots wheels");
+  CHECK(blind.status == 2);
+  CHECK(blind.err.find("--log-out") != std::string::npos);
+}

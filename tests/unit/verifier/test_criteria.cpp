@@ -1,0 +1,405 @@
+// Performance criteria (docs/pars.md, "Criterion files"): the seed paper's
+// eqs. (4), (5), (6) and (7) evaluated on hand-built final distributions whose
+// probabilities have closed forms, and every error a criterion can give.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/verifier/criteria.hpp"
+#include "p3at/verifier/pars/printer.hpp"
+
+namespace v = p3at::verifier;
+namespace mission = p3at::mission;
+
+namespace {
+
+double phi(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
+// P(|X - mean| < r) for an isotropic 2-D Gaussian with variance var per axis (Rayleigh).
+double within_centred(double r, double var) { return 1.0 - std::exp(-r * r / (2.0 * var)); }
+
+const mission::Mission& two_robots() {
+  static const mission::Mission m =
+      mission::load_mission_file(std::string(P3AT_SOURCE_DIR) + "/examples/bounding_overwatch/mission.yaml");
+  return m;
+}
+
+v::RobotOutcome robot(double t_mean, double t_var, double x, double y, double pos_var) {
+  v::RobotOutcome r;
+  r.finish_time_s = v::Mixture1::gaussian(t_mean, t_var);
+  r.final_position.mean = Eigen::Vector2d(x, y);
+  r.final_position.cov = pos_var * Eigen::Matrix2d::Identity();
+  return r;
+}
+
+v::Branch branch(double weight, v::RobotOutcome r1, v::RobotOutcome r2) {
+  v::Branch b;
+  b.weight = weight;
+  b.robots = {std::move(r1), std::move(r2)};
+  return b;
+}
+
+v::SystemOutcome one_branch(v::RobotOutcome r1, v::RobotOutcome r2) {
+  v::SystemOutcome o;
+  o.branches.push_back(branch(1.0, std::move(r1), std::move(r2)));
+  return o;
+}
+
+std::string criterion_error(const std::string& text) {
+  try {
+    (void)v::parse_criterion(text, "c.crit");
+  } catch (const v::CriterionError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+std::string evaluation_error(const std::string& text, const v::SystemOutcome& outcome) {
+  const auto r = v::evaluate_criterion(v::parse_criterion(text, "c.crit"), two_robots(), outcome, 0.8);
+  return r.ok() ? "no error" : r.error().message;
+}
+
+constexpr const char* kEq4 = R"(# eq. (4): robot1 reaches its goal by 200 s, within 2 m
+criterion reach
+network Delay<t1> ; (Delay<t2> # At<robot1, p>)
+constraints
+  t1 <= 200
+  |p - (19.75, 18)| < 2
+)";
+
+constexpr const char* kEq5 = R"(# eq. (5): robot1 arrives before robot2, each within R of its location with P > 0.8
+criterion ordered_arrival
+network  Delay<t1> ; (Delay<t2> # At<robot1,p>) | Delay<t3> ; (Delay<t4> # At<robot2,q>)
+constraints
+  t1 <= 200
+  t3 <= 200
+  t1 < t3
+  P(|p - (19.75, 18.0)| < 2.0) > 0.8
+  P(|q - (20.0, 17.5)| < 2.0) > 0.8
+)";
+
+constexpr const char* kEq6 = R"(criterion apart
+network Delay<t1> ; (Delay<t2> # At<robot1, p>) |
+        Delay<t3> ; (Delay<t4> # At<robot2, q>)
+constraints
+  t1, t3 > 0
+  P(|p - q| > 1.0) > 0.8
+)";
+
+}  // namespace
+
+TEST_SUITE("criterion files") {
+  TEST_CASE("eq. (5) parses: name, network, constraints with their lines") {
+    const v::Criterion c = v::parse_criterion(kEq5, "eq5.crit");
+    CHECK(c.name == "ordered_arrival");
+    CHECK(c.source == "eq5.crit");
+    CHECK(v::pars::to_string(c.network) ==
+          "Delay<t1> ; (Delay<t2> # At<robot1, p>) | Delay<t3> ; (Delay<t4> # At<robot2, q>)");
+    REQUIRE(c.constraints.size() == 5);
+    CHECK_FALSE(c.constraints[0].probabilistic);
+    CHECK(c.constraints[0].line == 5);
+    CHECK(c.constraints[0].column == 3);
+    CHECK(v::to_string(c.constraints[2]) == "t1 < t3");
+    CHECK(c.constraints[3].probabilistic);
+    CHECK(c.constraints[3].bound == doctest::Approx(0.8));
+    CHECK(c.constraints[3].bound_op == v::pars::CompareOp::greater);
+    CHECK(v::to_string(c.constraints[3]) == "P(|p - (19.75, 18)| < 2) > 0.8");
+  }
+
+  TEST_CASE("to_string writes a file that reads back equal") {
+    for (const char* text : {kEq4, kEq5, kEq6}) {
+      const v::Criterion c = v::parse_criterion(text, "c.crit");
+      CHECK(v::parse_criterion(v::to_string(c), "again.crit") == c);
+    }
+    CHECK(v::to_string(v::parse_criterion(kEq4, "c.crit")) ==
+          "criterion reach\nnetwork Delay<t1> ; (Delay<t2> # At<robot1, p>)\nconstraints\n  t1 <= 200\n"
+          "  |p - (19.75, 18)| < 2\n");
+    const v::Criterion several = v::parse_criterion(
+        "criterion s\nnetwork At<robot1, p>\nconstraints\n  P(|p - (1, 2)| < 3 and |p - (0, 0)| > 1) >= 0.5\n", "s");
+    CHECK(v::to_string(several.constraints[0]) == "P(|p - (1, 2)| < 3 and |p - (0, 0)| > 1) >= 0.5");
+    CHECK(v::parse_criterion(v::to_string(several), "s") == several);
+  }
+
+  TEST_CASE("no constraints is allowed; comments anywhere on their own lines") {
+    const v::Criterion c =
+        v::parse_criterion("# head\ncriterion bare\n# between\nnetwork At<robot1, p>\n# tail\n", "c.crit");
+    CHECK(c.constraints.empty());
+    CHECK(c.network == v::pars::process("At", {v::pars::name("robot1"), v::pars::name("p")}));
+  }
+
+  TEST_CASE("load_criterion_file reads a file and names unreadable ones") {
+    const std::string path = "/tmp/p3at_test_criteria_eq4.crit";
+    {
+      std::ofstream out(path);
+      out << kEq4;
+    }
+    CHECK(v::load_criterion_file(path).name == "reach");
+    std::remove(path.c_str());
+    try {
+      (void)v::load_criterion_file(path);
+      FAIL("no error");
+    } catch (const v::CriterionError& e) {
+      CHECK(std::string(e.what()) == path + ": cannot open criterion file: No such file or directory");
+      CHECK(e.line() == 0);
+    }
+    CHECK_THROWS_WITH_AS((void)v::load_criterion_file("/tmp"), "/tmp: cannot open criterion file: it is a directory",
+                         v::CriterionError);
+  }
+}
+
+TEST_SUITE("criterion errors name line:column") {
+  TEST_CASE("the header and the network") {
+    CHECK(criterion_error("network At<robot1, p>") ==
+          "c.crit:1:1: expected 'criterion NAME' to begin the criterion, got 'network'");
+    CHECK(criterion_error("criterion\nnetwork At<robot1, p>") ==
+          "c.crit:2:1: expected the criterion's name after 'criterion', got 'network'");
+    CHECK(criterion_error("criterion x\nconstraints\n  t < 1") ==
+          "c.crit:2:1: expected 'network' and the criterion's process network on a new line, got 'constraints'");
+    CHECK(criterion_error("criterion x network At<robot1, p>") ==
+          "c.crit:1:13: expected 'network' and the criterion's process network on a new line, got 'network'");
+    CHECK(criterion_error("criterion x\nnetwork At<robot1, p> extra") ==
+          "c.crit:2:23: unexpected 'extra' after the network (expected an operator ';', '|' or '#', or "
+          "'constraints' on a new line)");
+    CHECK(criterion_error("criterion x\nnetwork Delay<t> ;") ==
+          "c.crit:2:19: expected a process name or '(', got the end of the input");
+  }
+  TEST_CASE("the network's processes and variables") {
+    CHECK(criterion_error("criterion x\nnetwork Delay<t> ; Foo<y>") ==
+          "c.crit:2:20: unknown process 'Foo' in a criterion network (expected Delay<time variable> or "
+          "At<robot, position variable>)");
+    CHECK(criterion_error("criterion x\nnetwork Delay<t1, t2>") ==
+          "c.crit:2:9: Delay takes one time variable, Delay<t>, got 'Delay<t1, t2>'");
+    CHECK(criterion_error("criterion x\nnetwork Delay<200>") ==
+          "c.crit:2:9: Delay takes one time variable, Delay<t>, got 'Delay<200>'");
+    CHECK(criterion_error("criterion x\nnetwork At<robot1>") ==
+          "c.crit:2:9: At takes a robot and a position variable, At<robot, p>, got 'At<robot1>'");
+    CHECK(criterion_error("criterion x\nnetwork Delay<t>(c)") ==
+          "c.crit:2:9: a criterion's processes have no ports or results, got 'Delay<t>(c)'");
+    CHECK(criterion_error("criterion x\nnetwork Delay<t> ;\n  (Delay<t> # At<robot1, p>)") ==
+          "c.crit:3:4: variable 't' appears twice in the network (first at 2:9)");
+    CHECK(criterion_error("criterion x\nnetwork Delay<P>") ==
+          "c.crit:2:9: 'P' is reserved (P(...) and 'and' in constraints); rename the variable");
+    CHECK(criterion_error("criterion x\nnetwork At<robot1, robot1>") ==
+          "c.crit:2:9: 'robot1' names both a robot and a variable");
+  }
+  TEST_CASE("constraints") {
+    const std::string head = "criterion x\nnetwork Delay<t1> ; (Delay<t2> # At<robot1, p>) | Delay<t3> ; At<robot2, q>\n"
+                             "constraints\n";
+    CHECK(criterion_error(head + "  t9 < 1") ==
+          "c.crit:4:3: unknown variable 't9' (not a parameter of the network's Delay or At processes)");
+    CHECK(criterion_error(head + "  t1 = 5") ==
+          "c.crit:4:3: compare with <, <=, > or >= (for continuous variables, '=' has probability 0)");
+    CHECK(criterion_error(head + "  |t1 - (1, 2)| < 2") == "c.crit:4:3: 't1' is a time, not a position (At's second parameter)");
+    CHECK(criterion_error(head + "  p <= 5") ==
+          "c.crit:4:3: 'p' is a position: constrain its distance, as in |p - (x, y)| < r");
+    CHECK(criterion_error(head + "  2 * t1 < 5") ==
+          "c.crit:4:3: expected a time comparison (t <= 200, t1 + 5 < t3) or a distance (|p - (x, y)| < r, "
+          "|p - q| > d), got '2 * t1'");
+    CHECK(criterion_error(head + "  t1 < t1") == "c.crit:4:3: 't1' is compared with itself");
+    CHECK(criterion_error(head + "  5 < 6") == "c.crit:4:3: the comparison involves no variable");
+    CHECK(criterion_error(head + "  |p - q| > -1") ==
+          "c.crit:4:3: a distance is never negative: compare it with a length >= 0, got -1");
+    CHECK(criterion_error(head + "  |p - p| > 1") == "c.crit:4:3: |p - p| is always 0");
+    CHECK(criterion_error(head + "  |p - (1, 2)| < t1") == "c.crit:4:3: compare a distance with a constant, got 't1'");
+    CHECK(criterion_error(head + "  t1, |p - (1, 2)| < 1") ==
+          "c.crit:4:3: a list before a comparison must be variables only, got '|p - (1, 2)|'");
+    CHECK(criterion_error(head + "  P(t1 < 5) < 0.5") ==
+          "c.crit:4:13: a probability constraint is a lower bound, P(...) > x or P(...) >= x (for an upper bound, "
+          "negate the event inside P)");
+    CHECK(criterion_error(head + "  P(t1 < 5) > 1.5") == "c.crit:4:15: expected a probability between 0 and 1, got '1.5'");
+    CHECK(criterion_error(head + "  P(t1 < 5 t3 < 4) > 0.5") == "c.crit:4:12: expected 'and' or ')' to close P(...), got 't3'");
+    CHECK(criterion_error(head + "  t1 < 5 t3 < 4") == "c.crit:4:10: expected the end of the line after the constraint, got 't3'");
+    CHECK(criterion_error(head + "  t1 5") == "c.crit:4:6: expected a comparison (<, <=, > or >=), got '5'");
+    CHECK(criterion_error(head + "  t1 <") == "c.crit:4:7: expected a number, a name, '(' or '|', got the end of the input");
+  }
+}
+
+TEST_SUITE("evaluation") {
+  TEST_CASE("eq. (4): a deadline and a radius, jointly, with the caller's required probability") {
+    const v::Criterion c = v::parse_criterion(kEq4, "eq4.crit");
+    const auto verdict =
+        v::evaluate_criterion(c, two_robots(), one_branch(robot(190, 36, 19.75, 18, 1.0), robot(0, 1, 0, 0, 1)), 0.8);
+    REQUIRE(verdict.ok());
+    const double expected = phi(10.0 / 6.0) * within_centred(2.0, 1.0);
+    CHECK(verdict->name == "reach");
+    CHECK(verdict->probability == doctest::Approx(expected).epsilon(1e-5));
+    CHECK(verdict->required == doctest::Approx(0.8));
+    CHECK(verdict->holds == (expected >= 0.8));
+    CHECK(verdict->holds);
+    CHECK(verdict->explanation.find("P(t1 <= 200 and |p - (19.75, 18)| < 2) = 0.8") == 0);
+    // A stricter caller: the same probability, no longer enough.
+    const auto strict =
+        v::evaluate_criterion(c, two_robots(), one_branch(robot(190, 36, 19.75, 18, 1.0), robot(0, 1, 0, 0, 1)), 0.9);
+    REQUIRE(strict.ok());
+    CHECK_FALSE(strict->holds);
+  }
+
+  TEST_CASE("eq. (5): ordering and per-robot probability bounds") {
+    const v::Criterion c = v::parse_criterion(kEq5, "eq5.crit");
+    const auto verdict = v::evaluate_criterion(
+        c, two_robots(), one_branch(robot(150, 25, 19.75, 18, 1.0), robot(190, 36, 20, 17.5, 2.25)), 0.5);
+    REQUIRE(verdict.ok());
+    const double bare = phi(50.0 / 5.0) * phi(10.0 / 6.0) * phi(40.0 / std::sqrt(61.0));
+    const double p_near = within_centred(2.0, 1.0);   // 0.865 > 0.8
+    const double q_near = within_centred(2.0, 2.25);  // 0.589, not > 0.8
+    CHECK_FALSE(verdict->holds);
+    // The verdict shows the group with the least margin: robot2's radius.
+    CHECK(verdict->probability == doctest::Approx(q_near).epsilon(1e-5));
+    CHECK(verdict->required == doctest::Approx(0.8));
+    const std::string e = verdict->explanation;
+    CHECK(e.find("P(t1 <= 200 and t3 <= 200 and t1 < t3) = 0.9522, holds (required >= 0.5); ") == 0);
+    CHECK(e.find("P(|p - (19.75, 18)| < 2) = 0.8647, holds (required > 0.8)") != std::string::npos);
+    CHECK(e.find("P(|q - (20, 17.5)| < 2) = 0.5889, fails (required > 0.8)") != std::string::npos);
+    // With robot2 tighter, every group holds; the least margin is then the bare group's.
+    const auto better = v::evaluate_criterion(
+        c, two_robots(), one_branch(robot(150, 25, 19.75, 18, 1.0), robot(190, 36, 20, 17.5, 0.25)), 0.5);
+    REQUIRE(better.ok());
+    CHECK(better->holds);
+    CHECK(better->probability == doctest::Approx(p_near).epsilon(1e-5));
+    CHECK(bare > 0.5);
+    // Ordering reversed: t1 < t3 fails, and the bare group with it.
+    const auto late = v::evaluate_criterion(
+        c, two_robots(), one_branch(robot(195, 25, 19.75, 18, 0.25), robot(150, 36, 20, 17.5, 0.25)), 0.5);
+    REQUIRE(late.ok());
+    CHECK_FALSE(late->holds);
+    CHECK(late->probability == doctest::Approx(phi(1.0) * phi(50.0 / 6.0) * phi(-45.0 / std::sqrt(61.0))).epsilon(1e-5));
+  }
+
+  TEST_CASE("branches are weighted; pruned, blocked and unfinished mass count as failure") {
+    const v::Criterion c = v::parse_criterion(
+        "criterion deadline\nnetwork Delay<t1> ; (Delay<t2> # At<robot1, p>)\nconstraints\n  t1 <= 200\n", "d.crit");
+    v::SystemOutcome o;
+    o.branches.push_back(branch(0.5, robot(190, 36, 0, 0, 1), robot(0, 1, 0, 0, 1)));
+    o.branches.push_back(branch(0.3, robot(205, 16, 0, 0, 1), robot(0, 1, 0, 0, 1)));
+    v::RobotOutcome stuck = robot(100, 1, 0, 0, 1);
+    stuck.finished = false;
+    o.branches.push_back(branch(0.15, stuck, robot(0, 1, 0, 0, 1)));
+    o.pruned_mass = 0.05;
+    const auto verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
+    REQUIRE(verdict.ok());
+    CHECK(verdict->probability == doctest::Approx(0.5 * phi(10.0 / 6.0) + 0.3 * phi(-5.0 / 4.0)).epsilon(1e-6));
+    CHECK(verdict->explanation.find("pruned and blocked mass 0.05 counts as failure") != std::string::npos);
+    // A robot the criterion does not name may be unfinished without harm.
+    o.branches[2].robots[0].finished = true;
+    o.branches[2].robots[1].finished = false;
+    const auto other = v::evaluate_criterion(c, two_robots(), o, 0.5);
+    REQUIRE(other.ok());
+    CHECK(other->probability == doctest::Approx(0.5 * phi(10.0 / 6.0) + 0.3 * phi(-5.0 / 4.0) + 0.15).epsilon(1e-6));
+  }
+
+  TEST_CASE("eq. (6): safety holds at every separation sample and at the end") {
+    const v::Criterion c = v::parse_criterion(kEq6, "eq6.crit");
+    v::SystemOutcome o = one_branch(robot(150, 25, 0, 0, 1.0), robot(160, 25, 0, 0, 1.0));
+    v::SeparationSample close;
+    close.robot_i = 1;  // either order of the pair
+    close.robot_j = 0;
+    close.time_s = 40;
+    close.difference.cov = 0.25 * Eigen::Matrix2d::Identity();
+    v::SeparationSample wide = close;
+    wide.robot_i = 0;
+    wide.robot_j = 1;
+    wide.difference.cov = 4.0 * Eigen::Matrix2d::Identity();
+    o.branches[0].separations = {wide, close};
+    auto verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
+    REQUIRE(verdict.ok());
+    // The closest moment decides: P(|D| > 1) = exp(-1 / (2 * 0.25)).
+    CHECK(verdict->probability == doctest::Approx(std::exp(-2.0)).epsilon(1e-5));
+    CHECK_FALSE(verdict->holds);
+    // Without that moment, the end (difference variance 1 + 1) is the closest.
+    o.branches[0].separations = {wide};
+    verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
+    REQUIRE(verdict.ok());
+    CHECK(verdict->probability == doctest::Approx(std::exp(-0.25)).epsilon(1e-5));
+    CHECK_FALSE(verdict->holds);  // 0.7788, not > 0.8
+    // Robots that end far apart and never came close: safe.
+    o.branches[0].robots[1].final_position.mean = Eigen::Vector2d(10, 0);
+    o.branches[0].separations.clear();
+    verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
+    REQUIRE(verdict.ok());
+    CHECK(verdict->holds);
+    CHECK(verdict->probability == doctest::Approx(1.0).epsilon(1e-6));
+  }
+
+  TEST_CASE("time forms: offsets, reversed sides, lower bounds") {
+    const std::string head =
+        "criterion t\nnetwork Delay<a> ; (Delay<w1> # At<robot1, p>) | Delay<b> ; (Delay<w2> # At<robot2, q>)\n"
+        "constraints\n";
+    const v::SystemOutcome o = one_branch(robot(100, 16, 0, 0, 1), robot(120, 9, 0, 0, 1));
+    const auto prob = [&](const std::string& constraint) {
+      const auto r = v::evaluate_criterion(v::parse_criterion(head + "  " + constraint + "\n", "t"), two_robots(), o, 0.5);
+      REQUIRE(r.ok());
+      return r->probability;
+    };
+    CHECK(prob("a + 10 < b") == doctest::Approx(phi(10.0 / 5.0)).epsilon(1e-6));
+    CHECK(prob("b > a + 10") == doctest::Approx(phi(10.0 / 5.0)).epsilon(1e-6));
+    CHECK(prob("a > b - 30") == doctest::Approx(phi(10.0 / 5.0)).epsilon(1e-6));
+    CHECK(prob("110 >= a") == doctest::Approx(phi(10.0 / 4.0)).epsilon(1e-6));
+    CHECK(prob("a >= 2 * 50 + 4") == doctest::Approx(1.0 - phi(1.0)).epsilon(1e-6));
+    CHECK(prob("a, b <= 3 * 40") == doctest::Approx(phi(5.0) * phi(0.0)).epsilon(1e-6));
+    CHECK(prob("|p - (3, 4)| > 0") == doctest::Approx(1.0).epsilon(1e-6));
+  }
+
+  TEST_CASE("the network decides what the variables are: At alone, any robot order") {
+    const v::SystemOutcome o = one_branch(robot(100, 16, 0, 0, 1), robot(120, 9, 5, 5, 0.25));
+    const auto near = v::evaluate_criterion(
+        v::parse_criterion("criterion near\nnetwork At<robot2, q> | At<robot1, p>\nconstraints\n  |q - (5, 5)| < 1\n"
+                           "  |p - (0, 0)| < 1\n", "n"),
+        two_robots(), o, 0.3);
+    REQUIRE(near.ok());
+    CHECK(near->probability == doctest::Approx(within_centred(1, 0.25) * within_centred(1, 1)).epsilon(1e-5));
+    // No constraints: the probability of reaching the network at all.
+    v::SystemOutcome half = o;
+    half.branches[0].weight = 0.6;
+    const auto reach = v::evaluate_criterion(v::parse_criterion("criterion r\nnetwork At<robot1, p>\n", "r"), two_robots(), half, 0.5);
+    REQUIRE(reach.ok());
+    CHECK(reach->probability == doctest::Approx(0.6));
+    CHECK(reach->holds);
+    CHECK(reach->explanation == "P(the network is reached) = 0.6, holds (required >= 0.5)");
+  }
+
+  TEST_CASE("a criterion that does not fit the system is an error, never a silent 0") {
+    const v::SystemOutcome o = one_branch(robot(100, 16, 0, 0, 1), robot(120, 9, 5, 5, 0.25));
+    CHECK(evaluation_error("criterion x\nnetwork At<robot9, p>\n", o) ==
+          "criterion 'x' (c.crit): unknown robot 'robot9' (the mission has robot1, robot2)");
+    CHECK(evaluation_error("criterion x\nnetwork Delay<t1> ; At<robot1, p>\n", o) ==
+          "criterion 'x' (c.crit) does not match the system's structure: 'Delay<W_robot1> # At<robot1, P_robot1>' "
+          "and 'At<robot1, p>' differ: a '#' composition of 2 parts vs the process At. The system projected onto the "
+          "criterion's processes is Delay<T_robot1> ; (Delay<W_robot1> # At<robot1, P_robot1>)");
+    CHECK(evaluation_error("criterion x\nnetwork At<robot1, p> # At<robot2, q>\n", o).find(
+              "differ: a '|' composition of 2 parts vs a '#' composition of 2 parts") != std::string::npos);
+    CHECK(evaluation_error("criterion x\nnetwork At<robot1, p> | At<robot1, q>\n", o).find(
+              "differ: the process At vs a '|' composition of 2 parts") != std::string::npos);
+    CHECK(evaluation_error("criterion x\nnetwork Delay<t>\n", o) ==
+          "criterion 'x' (c.crit) names no robot: its network needs At<robot, position> for each robot it constrains");
+    CHECK(evaluation_error("criterion x\nnetwork Delay<t1> ; (Delay<t2> # At<robot1, p>)\nconstraints\n  t2 < 5\n", o) ==
+          "criterion 'x' (c.crit): 't2' is how long robot1 stays at its final position (the Delay beside its At); the "
+          "verifier does not give its distribution, so it cannot be constrained");
+    v::SystemOutcome wrong = o;
+    wrong.branches[0].robots.pop_back();
+    CHECK(evaluation_error("criterion x\nnetwork At<robot1, p>\n", wrong) ==
+          "criterion 'x' (c.crit): the outcome has 1 robots in a branch, the mission 2");
+  }
+
+  TEST_CASE("eq. (7): the success criterion of a mission") {
+    const v::Criterion c = v::success_criterion(two_robots(), 200, 2.0);
+    CHECK(c.name == "success");
+    CHECK(v::pars::to_string(c.network) ==
+          "Delay<t_robot1> ; (Delay<w_robot1> # At<robot1, p_robot1>) | "
+          "Delay<t_robot2> ; (Delay<w_robot2> # At<robot2, p_robot2>)");
+    REQUIRE(c.constraints.size() == 3);
+    CHECK(v::to_string(c.constraints[0]) == "t_robot1, t_robot2 <= 200");
+    CHECK(v::to_string(c.constraints[1]) == "|p_robot1 - (19.75, 18)| <= 2");
+    CHECK(v::to_string(c.constraints[2]) == "|p_robot2 - (20, 17.5)| <= 2");
+    CHECK(v::parse_criterion(v::to_string(c), "success.crit") == c);
+    const auto verdict = v::evaluate_criterion(
+        c, two_robots(), one_branch(robot(180, 25, 19.75, 18, 0.5), robot(195, 9, 20, 17.5, 0.5)), 0.8);
+    REQUIRE(verdict.ok());
+    const double expected = phi(20.0 / 5.0) * phi(5.0 / 3.0) * within_centred(2, 0.5) * within_centred(2, 0.5);
+    CHECK(verdict->probability == doctest::Approx(expected).epsilon(1e-5));
+    CHECK(verdict->holds == (expected >= 0.8));
+  }
+}

@@ -1,0 +1,247 @@
+// The verifier's system evaluation (the sequence of TR subsystems, Def. 10) on
+// small hand-checkable missions, and verify()'s probabilities, grid and
+// decision. Robot models are built in code here so each test states exactly
+// what the verifier knows.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+
+#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/verifier/models.hpp"
+#include "p3at/verifier/verify.hpp"
+
+using namespace p3at;
+using namespace p3at::verifier;
+
+namespace {
+
+std::string data(const std::string& name) { return std::string(P3AT_SOURCE_DIR) + "/tests/unit/verifier/data/" + name; }
+
+Models perfect_models(const mission::Mission& m) {
+  Models models;
+  for (const mission::RobotSpec& r : m.robots) {
+    RobotModel rm;
+    rm.name = r.name;
+    models.robots.push_back(rm);
+  }
+  models.comm.delivery_s = Mixture1::point(0.0);
+  models.comm.ack_s = Mixture1::point(0.0);
+  return models;
+}
+
+SystemOutcome evaluate(const mission::Mission& m, const Models& models) {
+  Result<SystemOutcome> o = evaluate_system(m, models);
+  REQUIRE(o);
+  return *o;
+}
+
+double total_weight(const SystemOutcome& o) {
+  double w = o.pruned_mass + o.blocked_mass;
+  for (const Branch& b : o.branches) w += b.weight;
+  return w;
+}
+
+}  // namespace
+
+TEST_CASE("relay: deterministic durations, robot2 starts only after robot1's message") {
+  const mission::Mission m = mission::load_mission_file(data("two_robot_relay.yaml"));
+  const SystemOutcome o = evaluate(m, perfect_models(m));
+  REQUIRE(o.branches.size() == 1);
+  CHECK(o.pruned_mass == 0.0);
+  CHECK(o.blocked_mass == 0.0);
+  const Branch& b = o.branches[0];
+  const double t1 = b.robots[0].finish_time_s.mean();
+  const double t2 = b.robots[1].finish_time_s.mean();
+  // 2.8 m to the AtGoal circle at 0.3 m/s, plus the 1 s ramp-up and the slow-down inside the dropoff.
+  CHECK(t1 > 2.8 / 0.3);
+  CHECK(t1 < 2.8 / 0.3 + 4.0);
+  // robot2's own bound is as long as robot1's, and starts after it.
+  CHECK(t2 > t1 + 2.8 / 0.3);
+  CHECK(b.completion_time_s.mean() == doctest::Approx(t2));
+  // Under a perfect model each robot stops just inside its 0.2 m AtGoal radius.
+  for (std::size_t i = 0; i < 2; ++i) {
+    const Eigen::Vector2d goal(m.robots[i].goal.x_m, m.robots[i].goal.y_m);
+    const double d = (b.robots[i].final_position.mean - goal).norm();
+    CHECK(d < 0.2);
+    CHECK(d > 0.1);
+  }
+  CHECK(b.robots[0].states == std::vector<std::string>{"go", "tell", "done"});
+  CHECK(b.robots[1].states == std::vector<std::string>{"wait", "go", "done"});
+}
+
+TEST_CASE("relay: the message delay reaches robot2's start in whole control cycles") {
+  const mission::Mission m = mission::load_mission_file(data("two_robot_relay.yaml"));
+  Models fast = perfect_models(m);
+  Models slow = fast;
+  slow.comm.delivery_s = Mixture1::point(0.35);  // 4 cycles instead of 1
+  const double t_fast = evaluate(m, fast).branches.at(0).robots[1].finish_time_s.mean();
+  const double t_slow = evaluate(m, slow).branches.at(0).robots[1].finish_time_s.mean();
+  CHECK(t_slow - t_fast == doctest::Approx(0.3).epsilon(1e-9));
+}
+
+TEST_CASE("relay: a distance-scale error moves the true end back along the path") {
+  const mission::Mission m = mission::load_mission_file(data("two_robot_relay.yaml"));
+  Models models = perfect_models(m);
+  models.robots[0].motion.trans_scale = 0.9;
+  const Branch b = evaluate(m, models).branches.at(0);
+  const RobotOutcome& r1 = b.robots[0];
+  // True displacement = 0.9 x odometric displacement from the start (0, 0).
+  CHECK(r1.final_position.mean.x() == doctest::Approx(0.9 * r1.believed_position.x()).epsilon(1e-3));
+  CHECK(std::abs(r1.final_position.mean.y()) < 1e-6);
+}
+
+TEST_CASE("relay: random motion error spreads the true position, growing with distance") {
+  const mission::Mission m = mission::load_mission_file(data("two_robot_relay.yaml"));
+  Models models = perfect_models(m);
+  models.robots[0].motion.trans_var_per_m = 0.01 * 0.01;
+  models.robots[0].motion.heading_var_per_m = 0.01 * 0.01;
+  const Branch b = evaluate(m, models).branches.at(0);
+  const Eigen::Matrix2d cov = b.robots[0].final_position.cov;
+  // Along the path: about 0.01^2 per metre over ~2.85 m.
+  CHECK(cov(0, 0) == doctest::Approx(0.01 * 0.01 * 2.85).epsilon(0.1));
+  // Across it, a heading random walk integrates to var * L^3 / 3.
+  CHECK(cov(1, 1) == doctest::Approx(0.01 * 0.01 * std::pow(2.85, 3) / 3.0).epsilon(0.15));
+  CHECK(b.robots[1].final_position.cov.norm() == doctest::Approx(0.0));
+}
+
+TEST_CASE("race: the uncertain order of two arrivals becomes two weighted branches") {
+  const mission::Mission m = mission::load_mission_file(data("two_robot_race.yaml"));
+  const SystemOutcome o = evaluate(m, perfect_models(m));
+  CHECK(total_weight(o) == doctest::Approx(1.0).epsilon(1e-9));
+  // The first arrival was uncertain (a split), and both orderings end in the
+  // same configuration, so they were merged back into one branch.
+  CHECK(o.ordering_splits >= 1);
+  REQUIRE(o.branches.size() == 1);
+  const Branch& b = o.branches[0];
+  const double t1 = b.robots[0].finish_time_s.mean();
+  const double t2 = b.robots[1].finish_time_s.mean();
+  // Mirror images: the same expected finish; the completion (the later of
+  // two equal, independent times) is later than either.
+  CHECK(t1 == doctest::Approx(t2).epsilon(1e-3));
+  CHECK(b.completion_time_s.mean() > t1);
+  CHECK(b.completion_time_s.variance() > 0.0);
+}
+
+TEST_CASE("deadlock: robots waiting for each other never finish, and that is no-go, not an error") {
+  const mission::Mission m = mission::load_mission_file(data("deadlock.yaml"));
+  const SystemOutcome o = evaluate(m, perfect_models(m));
+  CHECK(o.blocked_mass == doctest::Approx(1.0));
+  CHECK(o.branches.empty());
+  Result<VerifyResult> r = verify(m, perfect_models(m), VerifyOptions{});
+  REQUIRE(r);
+  CHECK(r->p_joint == 0.0);
+  CHECK_FALSE(r->go);
+  CHECK_FALSE(r->failed.empty());
+}
+
+TEST_CASE("verify: a robot without a model is an error naming it") {
+  const mission::Mission m = mission::load_mission_file(data("two_robot_relay.yaml"));
+  Models models = perfect_models(m);
+  models.robots.pop_back();
+  Result<VerifyResult> r = verify(m, models, VerifyOptions{});
+  REQUIRE_FALSE(r);
+  CHECK(r.error().message.find("robot2") != std::string::npos);
+}
+
+TEST_CASE("verify: overrides, the decision and the grid's shape and order") {
+  const mission::Mission m = mission::load_mission_file(data("two_robot_race.yaml"));
+  Models models = perfect_models(m);
+  models.robots[0].motion.trans_var_per_m = 0.05 * 0.05;
+  models.robots[1].motion.trans_var_per_m = 0.05 * 0.05;
+  VerifyOptions options;
+  options.tmax_s = 1.0;  // far too short
+  Result<VerifyResult> tight = verify(m, models, options);
+  REQUIRE(tight);
+  CHECK(tight->p_time == doctest::Approx(0.0));
+  CHECK_FALSE(tight->go);
+  REQUIRE(tight->failed.size() == 1);
+  CHECK(tight->failed[0].find("threshold") != std::string::npos);
+
+  options.tmax_s.reset();
+  for (double t = 5.0; t <= 30.0; t += 1.0) options.tmax_grid.push_back(t);
+  for (double r = 0.05; r <= 0.6; r += 0.05) options.rmax_grid.push_back(r);
+  Result<VerifyResult> r = verify(m, models, options);
+  REQUIRE(r);
+  CHECK(r->go);
+  REQUIRE(r->grid);
+  const Grid& g = *r->grid;
+  REQUIRE(g.p_time.size() == g.tmax.size());
+  REQUIRE(g.p_radius.size() == g.rmax.size());
+  REQUIRE(g.p_joint.size() == g.tmax.size());
+  for (std::size_t i = 0; i < g.tmax.size(); ++i) {
+    REQUIRE(g.p_joint[i].size() == g.rmax.size());
+    if (i > 0) CHECK(g.p_time[i] >= g.p_time[i - 1] - 1e-12);
+    for (std::size_t j = 0; j < g.rmax.size(); ++j) {
+      CHECK(g.p_joint[i][j] <= std::min(g.p_time[i], g.p_radius[j]) + 1e-12);
+      const Region expected = g.p_joint[i][j] < 0.05 ? Region::unsuccessful
+                              : g.p_joint[i][j] >= 0.95 ? Region::successful
+                                                        : Region::uncertain;
+      CHECK(g.region[i][j] == expected);
+    }
+  }
+  for (std::size_t j = 1; j < g.rmax.size(); ++j) CHECK(g.p_radius[j] >= g.p_radius[j - 1] - 1e-12);
+  CHECK(g.p_time.front() == doctest::Approx(0.0));
+  CHECK(g.p_time.back() == doctest::Approx(1.0));
+}
+
+TEST_CASE("verify: the same input gives bit-identical output") {
+  const mission::Mission m = mission::load_mission_file(std::string(P3AT_SOURCE_DIR) +
+                                                        "/examples/bounding_overwatch/mission.yaml");
+  const Models models = load_models_file(std::string(P3AT_SOURCE_DIR) + "/examples/bounding_overwatch/models.yaml");
+  VerifyOptions options;
+  for (double t = 170.0; t <= 230.0; t += 5.0) options.tmax_grid.push_back(t);
+  for (double r = 1.0; r <= 3.0; r += 0.25) options.rmax_grid.push_back(r);
+  Result<VerifyResult> a = verify(m, models, options);
+  Result<VerifyResult> b = verify(m, models, options);
+  REQUIRE(a);
+  REQUIRE(b);
+  CHECK(a->p_time == b->p_time);
+  CHECK(a->p_radius == b->p_radius);
+  CHECK(a->p_joint == b->p_joint);
+  CHECK(a->grid->p_joint == b->grid->p_joint);
+  CHECK(a->completion_mean_s == b->completion_mean_s);
+}
+
+TEST_CASE("re-verification from a snapshot: at launch it agrees with verify; late in the mission it is surer") {
+  const mission::Mission m = mission::load_mission_file(data("two_robot_relay.yaml"));
+  Models models = perfect_models(m);
+  models.comm.delivery_s = Mixture1::gaussian(0.2, 0.05 * 0.05);
+  TeamSnapshot at_launch;
+  at_launch.elapsed_s = 0.0;
+  for (const mission::RobotSpec& r : m.robots) {
+    RobotSnapshot s;
+    s.state = r.initial;
+    s.x_m = r.start.x_m;
+    s.y_m = r.start.y_m;
+    at_launch.robots.push_back(s);
+  }
+  at_launch.messages_sent.assign(m.messages.size(), false);
+  at_launch.messages_received.assign(m.messages.size(), false);
+  Result<VerifyResult> from_start = verify(m, models, VerifyOptions{});
+  Result<VerifyResult> from_snapshot = verify(m, models, VerifyOptions{}, {}, &at_launch);
+  REQUIRE(from_start);
+  REQUIRE(from_snapshot);
+  CHECK(from_snapshot->completion_mean_s == doctest::Approx(from_start->completion_mean_s).epsilon(1e-6));
+
+  // Later: robot1 done at 11 s, its message delivered, robot2 at its goal's doorstep.
+  TeamSnapshot late = at_launch;
+  late.elapsed_s = 22.0;
+  late.robots[0].state = 2;
+  late.robots[0].finished = true;
+  late.robots[0].entered_s = 11.0;
+  late.robots[0].x_m = 2.8;
+  late.robots[1].state = 1;
+  late.robots[1].x_m = 2.5;
+  late.messages_sent[0] = true;
+  late.messages_received[0] = true;
+  Result<VerifyResult> r = verify(m, models, VerifyOptions{}, {}, &late);
+  REQUIRE(r);
+  CHECK(r->completion_mean_s > 22.0);
+  CHECK(r->completion_mean_s < 22.0 + 3.0);
+  CHECK(r->robots[0].finish_mean_s == doctest::Approx(11.0));
+
+  TeamSnapshot bad = late;
+  bad.robots[1].state = 99;
+  CHECK_FALSE(verify(m, models, VerifyOptions{}, {}, &bad));
+}

@@ -1,0 +1,56 @@
+#pragma once
+/// What the system evaluation (the sequence of tail-recursive subsystems,
+/// Def. 10) produces: the distribution of the final state, as weighted
+/// branches (orderings of the robots' abort conditions), each with per-robot
+/// random variables. Criteria (criteria.hpp) are evaluated on this.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "p3at/verifier/mog.hpp"
+
+namespace p3at::verifier {
+
+/// One robot in one branch at the end of the mission.
+struct RobotOutcome {
+  /// When its FSA reached a final state (mission clock, seconds from launch).
+  Mixture1 finish_time_s;
+  /// Its true final position.
+  Gaussian2 final_position;
+  /// Where its odometry says it is at the end (the mean the executive believes).
+  Eigen::Vector2d believed_position = Eigen::Vector2d::Zero();
+  /// The names of the FSA states it went through, in order (its trace).
+  std::vector<std::string> states;
+  bool finished = true;   ///< false if it never reached a final state in this branch (blocked, looped)
+};
+
+/// A sample of two robots' relative true position at some moment, for safety
+/// criteria (eq. 6): difference = position(i) - position(j).
+struct SeparationSample {
+  std::size_t robot_i = 0;
+  std::size_t robot_j = 0;
+  double time_s = 0.0;          ///< mean mission time of the sample
+  Gaussian2 difference;
+};
+
+/// One ordering hypothesis of the robots' abort conditions.
+struct Branch {
+  double weight = 1.0;
+  std::vector<RobotOutcome> robots;          ///< indexed like Mission::robots
+  Mixture1 completion_time_s;                ///< when the last robot finished
+  std::vector<SeparationSample> separations; ///< along the branch
+  /// ordering[k] = index of the robot whose abort condition fired k-th, for
+  /// ordering criteria (t_i < t_j).
+  std::vector<std::size_t> event_robots;
+};
+
+struct SystemOutcome {
+  std::vector<Branch> branches;   ///< weights sum to 1 - pruned_mass - blocked_mass
+  double pruned_mass = 0.0;       ///< ordering mass dropped to keep within Budget::max_branches
+  double blocked_mass = 0.0;      ///< mass of branches where some robot can never finish (deadlock)
+  std::size_t subsystems = 0;     ///< TR subsystems evaluated (Def. 10 steps), summed over branches
+  std::size_t ordering_splits = 0;  ///< events where more than one robot could plausibly fire first
+};
+
+}  // namespace p3at::verifier

@@ -1,0 +1,107 @@
+#pragma once
+/// The verifier's entry point: the library call behind `vipars verify`,
+/// `vipars gate` and the executive's launch gate, all with the same answer.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "p3at/common/result.hpp"
+#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/verifier/models.hpp"
+#include "p3at/verifier/outcome.hpp"
+
+namespace p3at::verifier {
+
+/// A grid cell's class (the paper's three regions), by the joint probability.
+enum class Region { unsuccessful, uncertain, successful };
+const char* to_string(Region region);  ///< "unsuccessful", "uncertain", "successful"
+
+struct VerifyOptions {
+  std::optional<double> tmax_s;      ///< overrides the mission's criteria
+  std::optional<double> rmax_m;
+  std::optional<double> threshold;
+  std::vector<double> tmax_grid;     ///< axis values; both empty = no grid
+  std::vector<double> rmax_grid;
+  double region_low = 0.05;          ///< p_joint below: high-confidence unsuccessful
+  double region_high = 0.95;         ///< p_joint at or above: high-confidence successful
+};
+
+/// One extra criterion's verdict (from a --criterion file).
+struct CriterionVerdict {
+  std::string name;
+  double probability = 0.0;          ///< the constraint's probability on the final distribution
+  double required = 0.0;            ///< the probability it must reach
+  bool holds = false;
+  std::string explanation;           ///< human-readable: what was checked
+};
+
+struct Grid {
+  std::vector<double> tmax;                      ///< axis
+  std::vector<double> rmax;                      ///< axis
+  std::vector<double> p_time;                    ///< over tmax
+  std::vector<double> p_radius;                  ///< over rmax
+  std::vector<std::vector<double>> p_joint;      ///< [tmax][rmax]
+  std::vector<std::vector<Region>> region;       ///< [tmax][rmax]
+};
+
+/// A robot's predicted figures (for logs and reports).
+struct RobotPrediction {
+  std::string name;
+  double finish_mean_s = 0.0, finish_sd_s = 0.0;
+  double final_x_m = 0.0, final_y_m = 0.0;       ///< mean true final position
+  double final_sd_m = 0.0;                       ///< sqrt(trace(cov)/2)
+  double dist_mean_m = 0.0;                      ///< mean true distance to goal
+  double p_radius = 0.0;                         ///< P(r_i <= rmax)
+};
+
+struct VerifyResult {
+  double tmax_s = 0.0, rmax_m = 0.0, threshold = 0.0;
+  double p_time = 0.0;      ///< P(t <= tmax)
+  double p_radius = 0.0;    ///< P(every r_i <= rmax)
+  double p_joint = 0.0;     ///< P(t <= tmax and every r_i <= rmax)
+  bool go = false;          ///< p_joint >= threshold and every extra criterion holds
+  std::vector<std::string> failed;           ///< one line per failed criterion, for refusals
+  double completion_mean_s = 0.0, completion_sd_s = 0.0;
+  std::vector<RobotPrediction> robots;
+  std::optional<Grid> grid;
+  std::vector<CriterionVerdict> criteria;
+  double pruned_mass = 0.0;
+  double blocked_mass = 0.0;
+  std::size_t branches = 0;
+  std::size_t subsystems = 0;
+};
+
+/// Where the team is now, for re-verification during a mission (the launch
+/// gate's in-mission check): the evaluation starts from here instead of from
+/// the mission's initial states. Positions are what the robots believe
+/// (odometry, world frame); the models add the true-position uncertainty
+/// accumulated over `travelled_m` and `turned_rad` so far.
+struct RobotSnapshot {
+  std::size_t state = 0;            ///< index into RobotSpec::states
+  double entered_s = 0.0;           ///< mission time the state was entered
+  double x_m = 0.0, y_m = 0.0, theta_rad = 0.0;  ///< odometric pose
+  double travelled_m = 0.0;         ///< odometric distance since launch
+  double turned_rad = 0.0;          ///< absolute odometric rotation since launch
+  bool finished = false;
+};
+struct TeamSnapshot {
+  double elapsed_s = 0.0;                 ///< mission time now
+  std::vector<RobotSnapshot> robots;      ///< indexed like Mission::robots
+  std::vector<bool> messages_sent;        ///< indexed like Mission::messages
+  std::vector<bool> messages_received;    ///< delivered to every recipient
+};
+
+/// Evaluates the system once (mission | robot models | environment) and
+/// returns its final distribution. Errors (a mission robot without a model,
+/// for instance) come back as Error values naming what is missing.
+Result<SystemOutcome> evaluate_system(const mission::Mission& mission, const Models& models,
+                                      const TeamSnapshot* from = nullptr);
+
+/// Verifies `mission` against its criteria (overridden by `options`), plus
+/// the extra criteria texts in `criteria_files` (PARS criterion files, see
+/// docs/verifier.md; parse errors come back with file:line:column).
+Result<VerifyResult> verify(const mission::Mission& mission, const Models& models, const VerifyOptions& options,
+                            const std::vector<std::string>& criteria_files = {}, const TeamSnapshot* from = nullptr);
+
+}  // namespace p3at::verifier

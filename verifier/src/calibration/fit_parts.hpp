@@ -1,0 +1,74 @@
+#pragma once
+// The pieces of calibrate(), private to the library: what one manoeuvre
+// measured, and the fits of the motion error, the kinematics and the delays.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "p3at/verifier/calibration.hpp"
+#include "p3at/verifier/models.hpp"
+
+namespace p3at::verifier::calibration_detail {
+
+/// One interval between two consecutive rows of a manoeuvre, by odometry.
+struct Interval {
+  double dt_s = 0.0;
+  double t_mid_s = 0.0;
+  double ds_m = 0.0;          ///< along the interval's mid heading
+  double dtheta_rad = 0.0;
+  double cmd_trans_mps = 0.0; ///< the command in force (sent after the interval's first row)
+  double cmd_rot_radps = 0.0;
+};
+std::vector<Interval> intervals(const Manoeuvre& m);
+
+/// A manoeuvre's totals: odometric sums, and what the true poses at its two
+/// ends say (when both are known).
+struct Measure {
+  const Manoeuvre* manoeuvre = nullptr;
+  std::size_t cycles = 0;
+  double odo_dist_m = 0.0;       ///< sum of ds (signed)
+  double odo_abs_dist_m = 0.0;   ///< sum of |ds|
+  double odo_dist_sq = 0.0;      ///< sum of ds^2, m^2
+  double odo_rot_rad = 0.0;
+  double odo_abs_rot_rad = 0.0;
+  double odo_rot_sq = 0.0;
+  bool has_truth = false;
+  double true_rot_rad = 0.0;     ///< the true heading change, unwrapped next to odo_rot_rad
+  double true_dist_m = 0.0;      ///< signed path length (the chord, corrected for constant curvature)
+};
+Measure measure(const Manoeuvre& m);
+
+/// A scale and a variance fitted together: y = scale * x + e with
+/// var(e) = var_per_unit * L or var_relative * Q (one of the two forms, the
+/// one that explains the data better; see docs/calibration.md).
+struct ScaleFit {
+  double scale = 1.0;
+  double scale_se = 0.0;
+  double variance = 0.0;      ///< of the chosen form
+  double variance_se = 0.0;
+  bool relative = false;      ///< the per-cycle relative form was chosen
+  double residual_rms = 0.0;  ///< of y - scale * x
+  std::string form_note;      ///< why this form
+};
+/// `per_cycle`: Q is known (rows every cycle). `allow_relative`: the model has a relative term for it.
+ScaleFit fit_scale(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& length,
+                   const std::vector<double>& length_sq, bool per_cycle, bool allow_relative);
+
+struct MotionFit {
+  MotionError motion;
+  std::vector<ParameterFit> fits;
+};
+/// Straight runs and spins with true poses (at least 2 of each).
+MotionFit fit_motion(const std::vector<Measure>& straights, const std::vector<Measure>& spins);
+
+struct KinematicsFit {
+  Kinematics kinematics;
+  std::vector<ParameterFit> fits;
+  std::vector<std::string> warnings;
+};
+/// From the odometric velocity ramps of every manoeuvre of one robot.
+KinematicsFit fit_kinematics(const std::string& robot, const std::vector<const Manoeuvre*>& manoeuvres,
+                             const Kinematics& defaults);
+
+}  // namespace p3at::verifier::calibration_detail

@@ -1,0 +1,528 @@
+#include "engine/sequencer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <variant>
+
+#include "engine/state_analysis.hpp"
+
+namespace p3at::verifier::engine {
+namespace {
+
+// Orderings less likely than this are not worth a branch.
+constexpr double kNegligible = 1e-9;
+// Separation samples farther apart than this (mean) cannot matter to a safety
+// criterion about robots coming close; they are not kept.
+constexpr double kSeparationHorizonM = 6.0;
+
+Mixture1 negated(const Mixture1& x) {
+  Mixture1 out = x;
+  for (Component1& c : out.components) c.mean = -c.mean;
+  return out;
+}
+
+/// The weighted union of two mixtures (for merging branches).
+Mixture1 blend(const Mixture1& a, double wa, const Mixture1& b, double wb, std::size_t k) {
+  Mixture1 out;
+  for (const Component1& c : a.components) out.components.push_back({c.weight * wa, c.mean, c.var});
+  for (const Component1& c : b.components) out.components.push_back({c.weight * wb, c.mean, c.var});
+  out.normalise();
+  reduce(out, k);
+  return out;
+}
+
+/// The range outside which a mixture has (practically) no mass: every
+/// component's mean -/+ 8 standard deviations (a tail below 1e-15).
+std::pair<double, double> plausible_span(const Mixture1& x) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const Component1& c : x.components) {
+    const double reach = 8.0 * std::sqrt(std::max(c.var, 0.0));
+    lo = std::min(lo, c.mean - reach);
+    hi = std::max(hi, c.mean + reach);
+  }
+  return {lo, hi};
+}
+
+/// X - Y given X > Y, for independent X, Y: what is left of a pending
+/// duration after another event happened first.
+Mixture1 remaining_after(const Mixture1& x, const Mixture1& y, std::size_t k) {
+  const auto [x_lo, x_hi] = plausible_span(x);
+  const auto [y_lo, y_hi] = plausible_span(y);
+  (void)x_hi;
+  (void)y_lo;
+  if (x_lo > y_hi) {
+    // X is surely later: no conditioning, and Y enters only through its mean
+    // and variance (exact for the difference's first two moments), which
+    // costs one pass over X instead of a pairwise sum and a reduction.
+    const double y_mean = y.mean(), y_var = y.variance();
+    Mixture1 left = x;
+    for (Component1& c : left.components) {
+      c.mean -= y_mean;
+      c.var += y_var;
+    }
+    return left;
+  }
+  const Mixture1 diff = sum(x, negated(y), k);
+  double p = 0.0;
+  Mixture1 left = conditioned_greater(diff, Mixture1::point(0.0), k, p);
+  if (left.components.empty() || !(p > 0.0)) return Mixture1::point(0.0);
+  return left;
+}
+
+struct Pending {
+  std::size_t transition = 0;
+  Mixture1 residual;  ///< seconds from the branch clock until it fires
+};
+
+struct Track {
+  std::size_t state = 0;
+  BaseState base;                 ///< odometry at the current state's start
+  ErrorState error;
+  Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
+  StateAnalysis analysis;         ///< of the current state
+  std::vector<Pending> pending;
+  bool final = false;
+  Mixture1 finish;
+  std::vector<std::string> trace;
+
+  Eigen::Vector2d true_mean() const { return {base.x_m + error.mean(0), base.y_m + error.mean(1)}; }
+  Gaussian2 true_position() const {
+    Gaussian2 g;
+    g.mean = true_mean();
+    g.cov = spread + error.cov.topLeftCorner<2, 2>();
+    return g;
+  }
+};
+
+struct BranchState {
+  double weight = 1.0;
+  Mixture1 clock = Mixture1::point(0.0);
+  std::vector<Track> robots;
+  std::vector<std::optional<Mixture1>> delivery;  ///< per message: residual until delivered; nullopt = not sent
+  std::vector<SeparationSample> separations;
+  std::vector<std::size_t> event_robots;
+};
+
+class Sequencer {
+ public:
+  Sequencer(const mission::Mission& mission, const Models& models) : mission_(mission), models_(models) {
+    for (const Wall& w : models.environment.walls) walls_.push_back({w.x0_m, w.y0_m, w.x1_m, w.y1_m});
+    for (const mission::RobotSpec& r : mission.robots) robot_models_.push_back(models.find_robot(r.name));
+  }
+
+  SystemOutcome run(const TeamSnapshot* from) {
+    std::vector<BranchState> active = from ? start_from(*from) : start();
+    const std::size_t max_steps = models_.budget.max_events * std::max<std::size_t>(1, mission_.robots.size());
+    for (std::size_t step = 0; !active.empty() && step < max_steps; ++step) {
+      std::vector<BranchState> next;
+      for (BranchState& b : active) advance(std::move(b), next);
+      active = merge_and_prune(std::move(next));
+    }
+    for (const BranchState& b : active) outcome_.blocked_mass += b.weight;  // ran out of events: a loop
+    return std::move(outcome_);
+  }
+
+ private:
+  std::size_t k() const { return models_.budget.max_components; }
+  double cycle_s(std::size_t robot) const { return robot_models_[robot]->kinematics.cycle_s; }
+
+  std::vector<BranchState> start() {
+    BranchState b;
+    b.delivery.assign(mission_.messages.size(), std::nullopt);
+    for (const mission::RobotSpec& r : mission_.robots) {
+      Track t;
+      constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+      t.base = BaseState{r.start.x_m, r.start.y_m, r.start.theta_deg * kDegToRad, 0.0, 0.0};
+      b.robots.push_back(std::move(t));
+    }
+    std::vector<BranchState> branches{std::move(b)};
+    for (std::size_t i = 0; i < mission_.robots.size(); ++i) {
+      std::vector<BranchState> entered;
+      for (BranchState& br : branches) enter(std::move(br), i, mission_.robots[i].initial, entered);
+      branches = std::move(entered);
+    }
+    return branches;
+  }
+
+  std::vector<BranchState> start_from(const TeamSnapshot& snap) {
+    // The error accumulated so far is the nominal prediction's at the entry of
+    // each robot's current state (the robots cannot observe it).
+    record_entries_ = true;
+    {
+      std::vector<BranchState> active = start();
+      const std::size_t max_steps = models_.budget.max_events * std::max<std::size_t>(1, mission_.robots.size());
+      for (std::size_t step = 0; !active.empty() && step < max_steps; ++step) {
+        std::vector<BranchState> next;
+        for (BranchState& b : active) advance(std::move(b), next);
+        active = merge_and_prune(std::move(next));
+      }
+    }
+    record_entries_ = false;
+    outcome_ = SystemOutcome{};
+
+    BranchState b;
+    b.clock = Mixture1::point(snap.elapsed_s);
+    b.delivery.assign(mission_.messages.size(), std::nullopt);
+    for (std::size_t m = 0; m < mission_.messages.size(); ++m) {
+      const bool sent = m < snap.messages_sent.size() && snap.messages_sent[m];
+      const bool received = m < snap.messages_received.size() && snap.messages_received[m];
+      if (received) b.delivery[m] = Mixture1::point(0.0);
+      else if (sent) b.delivery[m] = delay_in_cycles(models_.comm.delivery_s, cycle_s(mission_.messages[m].from), k());
+    }
+    for (std::size_t i = 0; i < mission_.robots.size(); ++i) {
+      const RobotSnapshot& s = snap.robots.at(i);
+      Track t;
+      t.base = BaseState{s.x_m, s.y_m, s.theta_rad, 0.0, 0.0};
+      const auto it = entry_errors_.find({i, s.state});
+      if (it != entry_errors_.end()) t.error = it->second;
+      t.state = s.state;
+      if (s.finished) {
+        t.final = true;
+        t.finish = Mixture1::point(s.entered_s);
+      }
+      b.robots.push_back(std::move(t));
+    }
+    std::vector<BranchState> branches{std::move(b)};
+    for (std::size_t i = 0; i < mission_.robots.size(); ++i) {
+      if (snap.robots[i].finished) continue;
+      std::vector<BranchState> entered;
+      for (BranchState& br : branches) enter(std::move(br), i, snap.robots[i].state, entered, /*trace=*/false);
+      branches = std::move(entered);
+    }
+    return branches;
+  }
+
+
+  /// Robot i enters `state` at the branch clock. May split the branch by
+  /// which self-timed exit its path takes; splits off blocked mass.
+  void enter(BranchState b, std::size_t i, std::size_t state, std::vector<BranchState>& out, bool trace = true) {
+    const mission::RobotSpec& spec = mission_.robots[i];
+    Track& track = b.robots[i];
+    track.state = state;
+    track.pending.clear();
+    if (trace) track.trace.push_back(spec.states[state].name);
+    if (record_entries_) entry_errors_.emplace(std::make_pair(i, state), track.error);
+
+    // Notify: the message goes out on entry.
+    if (const auto* notify = std::get_if<mission::NotifyParams>(&spec.states[state].behavior)) {
+      if (const auto m = mission_.find_message(notify->message)) {
+        b.delivery[*m] = delay_in_cycles(models_.comm.delivery_s, cycle_s(i), k());
+        release_waiters(b, *m);
+      }
+    }
+    if (spec.is_final(state)) {
+      track.final = true;
+      track.finish = b.clock;
+      track.analysis = StateAnalysis{};
+      track.analysis.end = track.base;
+      track.analysis.error = track.error;
+      out.push_back(std::move(b));
+      return;
+    }
+
+    StateContext ctx;
+    ctx.robot = &spec;
+    ctx.model = robot_models_[i];
+    ctx.models = &models_;
+    ctx.obstacles = obstacles_near(b, i, state);
+    track.analysis = analyze_state(ctx, state, track.base, track.error);
+    outcome_.subsystems += 1;
+    record_path_separations(b, i);
+
+    // Exits driven by messages already on their way.
+    for (const std::size_t t : spec.states[state].outgoing) {
+      const auto* n = std::get_if<mission::NotifiedParams>(&spec.transitions[t].trigger);
+      if (n == nullptr) continue;
+      const auto m = mission_.find_message(n->message);
+      if (m && b.delivery[*m]) track.pending.push_back({t, maximum(*b.delivery[*m], cycle_s(i))});
+    }
+    const StateAnalysis& a = track.analysis;
+    if (a.blocked > kNegligible) outcome_.blocked_mass += b.weight * a.blocked;
+    if (a.exits.empty()) {
+      if (a.blocked < 1.0 - kNegligible) {
+        b.weight *= (1.0 - a.blocked);
+        out.push_back(std::move(b));
+      }
+      return;
+    }
+    for (const TimedExit& e : a.exits) {
+      BranchState child = b;
+      child.weight = b.weight * e.probability;
+      child.robots[i].pending.push_back({e.transition, e.duration_s});
+      out.push_back(std::move(child));
+    }
+  }
+
+  std::vector<Segment> obstacles_near(const BranchState& b, std::size_t i, std::size_t state) const {
+    const Track& me = b.robots[i];
+    double gx = me.base.x_m, gy = me.base.y_m;
+    if (const auto* go = std::get_if<mission::GoToGuardedParams>(&mission_.robots[i].states[state].behavior)) {
+      gx = go->goal.x_m;
+      gy = go->goal.y_m;
+    }
+    std::vector<Segment> all = walls_;
+    for (std::size_t j = 0; j < b.robots.size(); ++j) {
+      if (j == i) continue;
+      const Eigen::Vector2d p = b.robots[j].true_mean();
+      const auto body = body_segments(p.x(), p.y(), b.robots[j].base.theta_rad + b.robots[j].error.mean(2));
+      all.insert(all.end(), body.begin(), body.end());
+    }
+    const Eigen::Vector2d from = me.true_mean();
+    return segments_near(all, from.x(), from.y(), gx, gy, models_.environment.sonar_max_range_m + 1.0);
+  }
+
+  /// A Notify of message m: robots already waiting for it now have a pending exit.
+  void release_waiters(BranchState& b, std::size_t m) {
+    for (std::size_t j = 0; j < b.robots.size(); ++j) {
+      Track& t = b.robots[j];
+      if (t.final) continue;
+      const mission::RobotSpec& spec = mission_.robots[j];
+      for (const std::size_t tr : spec.states[t.state].outgoing) {
+        const auto* n = std::get_if<mission::NotifiedParams>(&spec.transitions[tr].trigger);
+        if (n == nullptr || n->message != mission_.messages[m].name) continue;
+        const bool already = std::any_of(t.pending.begin(), t.pending.end(), [&](const Pending& p) { return p.transition == tr; });
+        if (!already) t.pending.push_back({tr, *b.delivery[m]});
+      }
+    }
+  }
+
+  void record_separation(BranchState& b, std::size_t i, std::size_t j, double time_s, const Gaussian2& pi) {
+    const Gaussian2 pj = b.robots[j].true_position();
+    SeparationSample s;
+    s.robot_i = i;
+    s.robot_j = j;
+    s.time_s = time_s;
+    s.difference.mean = pi.mean - pj.mean;
+    s.difference.cov = pi.cov + pj.cov;
+    if (s.difference.mean.norm() <= kSeparationHorizonM) b.separations.push_back(s);
+  }
+
+  /// Robot i's path through its new state against where the others stand.
+  void record_path_separations(BranchState& b, std::size_t i) {
+    const Track& t = b.robots[i];
+    const double t0 = b.clock.mean();
+    const Eigen::Vector2d shift(t.error.mean(0), t.error.mean(1));
+    for (const PathSample& s : t.analysis.path) {
+      Gaussian2 p;
+      p.mean = Eigen::Vector2d(s.x_m, s.y_m) + shift;
+      p.cov = t.spread + t.error.cov.topLeftCorner<2, 2>();
+      for (std::size_t j = 0; j < b.robots.size(); ++j) {
+        if (j != i) record_separation(b, i, j, t0 + s.offset_s, p);
+      }
+    }
+  }
+
+  /// One event (Def. 10 step) of branch b: the first abort condition to hold.
+  void advance(BranchState b, std::vector<BranchState>& out) {
+    struct Candidate {
+      std::size_t robot, index;
+    };
+    std::vector<Candidate> candidates;
+    for (std::size_t i = 0; i < b.robots.size(); ++i) {
+      for (std::size_t p = 0; p < b.robots[i].pending.size(); ++p) candidates.push_back({i, p});
+    }
+    if (candidates.empty()) {
+      const bool done = std::all_of(b.robots.begin(), b.robots.end(), [](const Track& t) { return t.final; });
+      if (done) finish(std::move(b));
+      else outcome_.blocked_mass += b.weight;  // someone waits for a message nobody will send
+      return;
+    }
+    const auto residual = [&](const Candidate& c) -> const Mixture1& { return b.robots[c.robot].pending[c.index].residual; };
+
+    // Only candidates that can plausibly fire first are compared: one whose
+    // earliest plausible time is after another's latest cannot be first. This
+    // keeps an event's cost independent of how many robots are busy elsewhere.
+    double earliest_latest = std::numeric_limits<double>::infinity();
+    std::vector<std::pair<double, double>> span(candidates.size());
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      span[c] = plausible_span(residual(candidates[c]));
+      earliest_latest = std::min(earliest_latest, span[c].second);
+    }
+    std::vector<std::size_t> rivals;
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      if (span[c].first <= earliest_latest) rivals.push_back(c);
+    }
+
+    // Which fires first: P(R_c < R_o for every other rival o), pairwise products, normalised.
+    std::vector<double> first(rivals.size(), 1.0);
+    double total = 0.0;
+    for (std::size_t c = 0; c < rivals.size(); ++c) {
+      for (std::size_t o = 0; o < rivals.size() && first[c] > kNegligible; ++o) {
+        if (o != c) first[c] *= probability_less(residual(candidates[rivals[c]]), residual(candidates[rivals[o]]));
+      }
+      total += first[c];
+    }
+    if (!(total > 0.0)) {  // ties everywhere (identical point masses): file order decides
+      first.assign(rivals.size(), 0.0);
+      first[0] = 1.0;
+      total = 1.0;
+    }
+    if (std::count_if(first.begin(), first.end(), [&](double f) { return f / total >= kNegligible; }) > 1) {
+      ++outcome_.ordering_splits;
+    }
+    for (std::size_t c = 0; c < rivals.size(); ++c) {
+      const double p = first[c] / total;
+      if (p < kNegligible) {
+        outcome_.pruned_mass += b.weight * p;
+        continue;
+      }
+      // The usual case, one sure winner, takes the branch itself: copying it
+      // (its trace and samples grow with the mission) at every event would
+      // make the evaluation quadratic in the mission's length.
+      const bool sure = p > 1.0 - kNegligible;
+      const Candidate winner = candidates[rivals[c]];
+      BranchState child = sure ? std::move(b) : b;
+      child.weight *= p;
+      const Mixture1 r_c_raw = child.robots[winner.robot].pending[winner.index].residual;
+      Mixture1 r_c = r_c_raw;
+      if (!sure) {
+        for (std::size_t o = 0; o < rivals.size(); ++o) {
+          if (o == c) continue;
+          const Candidate& rival = candidates[rivals[o]];
+          double q = 0.0;
+          const Mixture1 cond = conditioned_less(r_c, child.robots[rival.robot].pending[rival.index].residual, k(), q);
+          if (!cond.components.empty() && q > 0.0) r_c = cond;
+        }
+      }
+      fire(std::move(child), winner.robot, winner.index, r_c, r_c_raw, out);
+      if (sure) break;
+    }
+  }
+
+  void fire(BranchState b, std::size_t i, std::size_t pending_index, const Mixture1& elapsed, const Mixture1& elapsed_raw,
+            std::vector<BranchState>& out) {
+    const std::size_t transition = b.robots[i].pending[pending_index].transition;
+    b.clock = sum(b.clock, elapsed, k());
+    for (std::size_t j = 0; j < b.robots.size(); ++j) {
+      if (j == i) continue;
+      for (Pending& p : b.robots[j].pending) p.residual = remaining_after(p.residual, elapsed_raw, k());
+    }
+    for (std::optional<Mixture1>& d : b.delivery) {
+      if (!d) continue;
+      if (d->components.size() == 1 && d->components[0].mean == 0.0 && d->components[0].var == 0.0) continue;
+      // Delivered for sure: nothing left to track (most messages, most of the
+      // time). The test is on the message's latest plausible delivery, since a
+      // moment-matched max(D - R, 0) keeps a small spread above 0 forever.
+      if (plausible_span(*d).second <= plausible_span(elapsed).first) {
+        d = Mixture1::point(0.0);
+        continue;
+      }
+      d = maximum(sum(*d, negated(elapsed), k()), 0.0);
+    }
+    b.event_robots.push_back(i);
+    Track& t = b.robots[i];
+    t.base = t.analysis.end;
+    t.error = t.analysis.error;
+    if (t.analysis.sets_spread) t.spread = t.analysis.end_spread;
+    const double now = b.clock.mean();
+    const Gaussian2 pi = t.true_position();
+    for (std::size_t j = 0; j < b.robots.size(); ++j) {
+      if (j != i) record_separation(b, i, j, now, pi);
+    }
+    enter(std::move(b), i, mission_.robots[i].transitions[transition].to, out);
+  }
+
+  void finish(BranchState b) {
+    Branch out;
+    out.weight = b.weight;
+    out.completion_time_s = b.clock;
+    out.separations = std::move(b.separations);
+    out.event_robots = std::move(b.event_robots);
+    for (Track& t : b.robots) {
+      RobotOutcome r;
+      r.finish_time_s = t.finish;
+      r.final_position = t.true_position();
+      r.believed_position = Eigen::Vector2d(t.base.x_m, t.base.y_m);
+      r.states = std::move(t.trace);
+      r.finished = t.final;
+      out.robots.push_back(std::move(r));
+    }
+    outcome_.branches.push_back(std::move(out));
+  }
+
+  /// Branches in the same discrete configuration become one (moment-matched);
+  /// then only the heaviest max_branches go on.
+  std::vector<BranchState> merge_and_prune(std::vector<BranchState> branches) {
+    std::map<std::string, std::size_t> by_key;
+    std::vector<BranchState> merged;
+    for (BranchState& b : branches) {
+      const std::string key = configuration_key(b);
+      const auto it = by_key.find(key);
+      if (it == by_key.end()) {
+        by_key.emplace(key, merged.size());
+        merged.push_back(std::move(b));
+      } else {
+        merge_into(merged[it->second], b);
+      }
+    }
+    std::stable_sort(merged.begin(), merged.end(),
+                     [](const BranchState& a, const BranchState& b) { return a.weight > b.weight; });
+    const std::size_t keep = std::max<std::size_t>(1, models_.budget.max_branches);
+    while (merged.size() > keep) {
+      outcome_.pruned_mass += merged.back().weight;
+      merged.pop_back();
+    }
+    return merged;
+  }
+
+  std::string configuration_key(const BranchState& b) const {
+    std::string key;
+    for (const Track& t : b.robots) {
+      key += std::to_string(t.state) + (t.final ? "F" : "") + "[";
+      for (const Pending& p : t.pending) key += std::to_string(p.transition) + ",";
+      key += "]";
+    }
+    key += "|";
+    for (const auto& d : b.delivery) key += d ? '1' : '0';
+    return key;
+  }
+
+  void merge_into(BranchState& a, const BranchState& b) const {
+    const double wa = a.weight, wb = b.weight, w = wa + wb;
+    if (!(w > 0.0)) return;
+    a.clock = blend(a.clock, wa, b.clock, wb, k());
+    for (std::size_t i = 0; i < a.robots.size(); ++i) {
+      Track& ta = a.robots[i];
+      const Track& tb = b.robots[i];
+      for (std::size_t p = 0; p < ta.pending.size(); ++p) {
+        ta.pending[p].residual = blend(ta.pending[p].residual, wa, tb.pending[p].residual, wb, k());
+      }
+      if (ta.final) ta.finish = blend(ta.finish, wa, tb.finish, wb, k());
+      const ErrorState errors[2] = {ta.error, tb.error};
+      const double ws[2] = {wa, wb};
+      ta.error = combine(errors, ws, 2);
+      ta.spread = (wa * ta.spread + wb * tb.spread) / w;
+    }
+    for (std::size_t m = 0; m < a.delivery.size(); ++m) {
+      if (a.delivery[m] && b.delivery[m]) a.delivery[m] = blend(*a.delivery[m], wa, *b.delivery[m], wb, k());
+    }
+    if (wb > wa) {
+      a.separations = b.separations;
+      a.event_robots = b.event_robots;
+      for (std::size_t i = 0; i < a.robots.size(); ++i) a.robots[i].trace = b.robots[i].trace;
+    }
+    a.weight = w;
+  }
+
+  const mission::Mission& mission_;
+  const Models& models_;
+  std::vector<Segment> walls_;
+  std::vector<const RobotModel*> robot_models_;
+  SystemOutcome outcome_;
+  bool record_entries_ = false;
+  std::map<std::pair<std::size_t, std::size_t>, ErrorState> entry_errors_;
+};
+
+}  // namespace
+
+SystemOutcome run_sequence(const mission::Mission& mission, const Models& models, const TeamSnapshot* from) {
+  Sequencer sequencer(mission, models);
+  return sequencer.run(from);
+}
+
+}  // namespace p3at::verifier::engine

@@ -1,0 +1,36 @@
+#pragma once
+/// The sensor and environment model: what the Pioneer's sonar ring reads at a
+/// true pose, given the walls of the map and the teammates' bodies, each sonar
+/// taken as a single ray (its mean reading). The executive turns the readings
+/// into AVOID_OBSTACLES' obstacle points (exec::sonar_obstacles), so the
+/// verifier's obstacle avoidance is the executive's own.
+
+#include <array>
+#include <vector>
+
+#include "p3at/executive/sonar.hpp"
+#include "p3at/verifier/models.hpp"
+
+namespace p3at::verifier::engine {
+
+struct Segment {
+  double x0, y0, x1, y1;
+};
+
+/// The segments a robot can see while it moves around `from`..`to` (walls and
+/// bodies within sonar range of that stretch), so each ray tests few segments.
+std::vector<Segment> segments_near(const std::vector<Segment>& all, double from_x, double from_y, double to_x,
+                                   double to_y, double reach_m);
+
+/// The distance from (x, y) to the nearest segment (infinity if none).
+double nearest_distance(const std::vector<Segment>& segments, double x_m, double y_m);
+
+/// The four sides of a Pioneer 3-AT body at pose (x, y, theta).
+std::array<Segment, 4> body_segments(double x_m, double y_m, double theta_rad);
+
+/// Ranges of the 16 sonars for a robot at the true pose (x, y, theta); a ray
+/// that hits nothing within max_range_m reads max_range_m ("nothing seen").
+std::array<double, exec::kP3atSonarCount> sonar_ranges(const std::vector<Segment>& segments, double x_m, double y_m,
+                                                       double theta_rad, double max_range_m);
+
+}  // namespace p3at::verifier::engine

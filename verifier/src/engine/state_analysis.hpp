@@ -1,0 +1,68 @@
+#pragma once
+/// One robot in one FSA state: the tail-recursive subsystem "state network |
+/// robot model | environment" iterated cycle by cycle (its period process
+/// Sys' is one control cycle; the flow function is the executive's own motor
+/// schemas feeding the robot model) until the state's abort condition Ω (its
+/// self-timed triggers) holds. NOISE's uniformly random direction is the only
+/// random input of that flow, so it is integrated by deterministic quadrature
+/// over equally spaced directions (sigma points); each direction's path is
+/// exact under the model. Message-driven exits are left to the sequencer.
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "engine/base_motion.hpp"
+#include "engine/error_state.hpp"
+#include "engine/sonar_model.hpp"
+#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/verifier/mog.hpp"
+#include "p3at/verifier/models.hpp"
+
+namespace p3at::verifier::engine {
+
+/// A transition the state ends by on its own (AtGoal, HasTurned, MessageSent),
+/// with the probability it is the one that fires and the state's duration
+/// (seconds from entry) when it does.
+struct TimedExit {
+  std::size_t transition = 0;   ///< index into RobotSpec::transitions
+  double probability = 0.0;
+  Mixture1 duration_s;
+};
+
+/// A mean odometric position sample along the state's path.
+struct PathSample {
+  double offset_s = 0.0;
+  double x_m = 0.0, y_m = 0.0;
+};
+
+struct StateAnalysis {
+  std::vector<TimedExit> exits;       ///< probabilities sum to 1 - blocked
+  double blocked = 0.0;               ///< probability no self-timed exit ever fires (stuck, or none exists)
+  BaseState end;                      ///< mean odometric pose and velocities when the state ends
+  Eigen::Matrix2d end_spread = Eigen::Matrix2d::Zero();  ///< odometric end-position spread (GoToGuarded)
+  bool sets_spread = false;           ///< true when end_spread replaces the robot's previous spread
+  ErrorState error;                   ///< the true pose's error at the end
+  std::vector<PathSample> path;       ///< every second, for separation (safety) criteria
+  std::size_t cycles_simulated = 0;   ///< work done, for budgets and benchmarks
+};
+
+/// What a state's evaluation needs to know about the rest of the system.
+struct StateContext {
+  const mission::RobotSpec* robot = nullptr;
+  const RobotModel* model = nullptr;
+  const Models* models = nullptr;
+  std::vector<Segment> obstacles;     ///< walls plus the teammates' bodies now
+};
+
+/// Evaluates state `state_index` of the robot, entered with odometric base
+/// `start` and error `error_start`.
+StateAnalysis analyze_state(const StateContext& context, std::size_t state_index, const BaseState& start,
+                            const ErrorState& error_start);
+
+/// A delay (seconds) seen through the executive's cycle: the number of whole
+/// cycles until it has elapsed (at least one), as a mixture over cycle counts.
+Mixture1 delay_in_cycles(const Mixture1& delay_s, double cycle_s, std::size_t max_components);
+
+}  // namespace p3at::verifier::engine

@@ -1,0 +1,219 @@
+#include "p3at/verifier/verify.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/sequencer.hpp"
+#include "p3at/verifier/criteria.hpp"
+
+namespace p3at::verifier {
+namespace {
+
+Status check_models(const mission::Mission& mission, const Models& models) {
+  for (const mission::RobotSpec& r : mission.robots) {
+    if (models.find_robot(r.name) == nullptr) {
+      return make_error(Error::Code::invalid_argument,
+                        "the models file " + (models.source.empty() ? std::string("given") : "'" + models.source + "'") +
+                            " has no model for mission robot '" + r.name + "' (add a `robots:` entry named '" + r.name +
+                            "', e.g. with `vipars calibrate`)");
+    }
+  }
+  return {};
+}
+
+/// P(every robot within rmax of its goal) in one branch (robots independent within a branch).
+double branch_radius(const Branch& b, const mission::Mission& mission, double rmax) {
+  double p = 1.0;
+  for (std::size_t i = 0; i < b.robots.size() && p > 0.0; ++i) {
+    const Eigen::Vector2d goal(mission.robots[i].goal.x_m, mission.robots[i].goal.y_m);
+    p *= probability_within(b.robots[i].final_position, goal, rmax);
+  }
+  return p;
+}
+
+struct Point {
+  double time = 0.0, radius = 0.0, joint = 0.0;
+};
+
+Point probabilities(const SystemOutcome& o, const mission::Mission& mission, double tmax, double rmax) {
+  Point p;
+  for (const Branch& b : o.branches) {
+    const double pt = b.completion_time_s.cdf(tmax);
+    const double pr = branch_radius(b, mission, rmax);
+    p.time += b.weight * pt;
+    p.radius += b.weight * pr;
+    p.joint += b.weight * pt * pr;
+  }
+  return p;
+}
+
+/// Mixture over branches of a per-branch mixture, for summaries.
+void moments(const std::vector<std::pair<double, const Mixture1*>>& parts, double& mean, double& sd) {
+  double w = 0.0, m = 0.0, s2 = 0.0;
+  for (const auto& [weight, x] : parts) {
+    w += weight;
+    m += weight * x->mean();
+  }
+  if (!(w > 0.0)) {
+    mean = sd = 0.0;
+    return;
+  }
+  m /= w;
+  for (const auto& [weight, x] : parts) {
+    const double d = x->mean() - m;
+    s2 += weight * (x->variance() + d * d);
+  }
+  mean = m;
+  sd = std::sqrt(std::max(0.0, s2 / w));
+}
+
+Region classify(double p, const VerifyOptions& options) {
+  if (p < options.region_low) return Region::unsuccessful;
+  if (p >= options.region_high) return Region::successful;
+  return Region::uncertain;
+}
+
+std::string fixed(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+}  // namespace
+
+Result<SystemOutcome> evaluate_system(const mission::Mission& mission, const Models& models, const TeamSnapshot* from) {
+  if (const Status st = check_models(mission, models); !st) return st.error();
+  if (from != nullptr && from->robots.size() != mission.robots.size()) {
+    return make_error(Error::Code::invalid_argument, "snapshot has " + std::to_string(from->robots.size()) +
+                                                         " robots, the mission " + std::to_string(mission.robots.size()));
+  }
+  if (from != nullptr) {
+    for (std::size_t i = 0; i < from->robots.size(); ++i) {
+      if (from->robots[i].state >= mission.robots[i].states.size()) {
+        return make_error(Error::Code::invalid_argument, "snapshot: robot '" + mission.robots[i].name + "' state index " +
+                                                             std::to_string(from->robots[i].state) + " out of range");
+      }
+    }
+  }
+  return engine::run_sequence(mission, models, from);
+}
+
+Result<VerifyResult> verify(const mission::Mission& mission, const Models& models, const VerifyOptions& options,
+                            const std::vector<std::string>& criteria_files, const TeamSnapshot* from) {
+  VerifyResult r;
+  r.tmax_s = options.tmax_s.value_or(mission.criteria.tmax_s);
+  r.rmax_m = options.rmax_m.value_or(mission.criteria.rmax_m);
+  r.threshold = options.threshold.value_or(mission.criteria.threshold);
+  if (!(r.tmax_s > 0.0) || !(r.rmax_m > 0.0)) {
+    return make_error(Error::Code::invalid_argument, "Tmax and Rmax must be positive (got tmax " + fixed(r.tmax_s, 3) +
+                                                         " s, rmax " + fixed(r.rmax_m, 3) + " m)");
+  }
+  if (!(r.threshold >= 0.0 && r.threshold <= 1.0)) {
+    return make_error(Error::Code::invalid_argument, "threshold must be in [0, 1], got " + fixed(r.threshold, 4));
+  }
+  Result<SystemOutcome> evaluated = evaluate_system(mission, models, from);
+  if (!evaluated) return evaluated.error();
+  const SystemOutcome& o = *evaluated;
+
+  const Point p = probabilities(o, mission, r.tmax_s, r.rmax_m);
+  r.p_time = p.time;
+  r.p_radius = p.radius;
+  r.p_joint = p.joint;
+  r.pruned_mass = o.pruned_mass;
+  r.blocked_mass = o.blocked_mass;
+  r.branches = o.branches.size();
+  r.subsystems = o.subsystems;
+
+  std::vector<std::pair<double, const Mixture1*>> completion;
+  for (const Branch& b : o.branches) completion.emplace_back(b.weight, &b.completion_time_s);
+  moments(completion, r.completion_mean_s, r.completion_sd_s);
+  for (std::size_t i = 0; i < mission.robots.size(); ++i) {
+    RobotPrediction rp;
+    rp.name = mission.robots[i].name;
+    std::vector<std::pair<double, const Mixture1*>> finish;
+    double w = 0.0;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+    const Eigen::Vector2d goal(mission.robots[i].goal.x_m, mission.robots[i].goal.y_m);
+    for (const Branch& b : o.branches) {
+      finish.emplace_back(b.weight, &b.robots[i].finish_time_s);
+      w += b.weight;
+      mean += b.weight * b.robots[i].final_position.mean;
+      rp.p_radius += b.weight * probability_within(b.robots[i].final_position, goal, r.rmax_m);
+    }
+    moments(finish, rp.finish_mean_s, rp.finish_sd_s);
+    if (w > 0.0) {
+      mean /= w;
+      for (const Branch& b : o.branches) {
+        const Eigen::Vector2d d = b.robots[i].final_position.mean - mean;
+        cov += (b.weight / w) * (b.robots[i].final_position.cov + d * d.transpose());
+      }
+    }
+    rp.final_x_m = mean.x();
+    rp.final_y_m = mean.y();
+    rp.final_sd_m = std::sqrt(std::max(0.0, cov.trace() / 2.0));
+    rp.dist_mean_m = (mean - goal).norm();
+    r.robots.push_back(rp);
+  }
+
+  if (!options.tmax_grid.empty() || !options.rmax_grid.empty()) {
+    Grid g;
+    g.tmax = options.tmax_grid.empty() ? std::vector<double>{r.tmax_s} : options.tmax_grid;
+    g.rmax = options.rmax_grid.empty() ? std::vector<double>{r.rmax_m} : options.rmax_grid;
+    for (const double t : g.tmax) g.p_time.push_back(probabilities(o, mission, t, r.rmax_m).time);
+    // Per-branch radius probabilities are shared by every Tmax: compute them once.
+    std::vector<std::vector<double>> radius(o.branches.size());
+    for (std::size_t b = 0; b < o.branches.size(); ++b) {
+      for (const double rm : g.rmax) radius[b].push_back(branch_radius(o.branches[b], mission, rm));
+    }
+    for (std::size_t j = 0; j < g.rmax.size(); ++j) {
+      double pr = 0.0;
+      for (std::size_t b = 0; b < o.branches.size(); ++b) pr += o.branches[b].weight * radius[b][j];
+      g.p_radius.push_back(pr);
+    }
+    for (const double t : g.tmax) {
+      std::vector<double> row(g.rmax.size(), 0.0);
+      std::vector<Region> regions;
+      for (std::size_t b = 0; b < o.branches.size(); ++b) {
+        const double pt = o.branches[b].completion_time_s.cdf(t);
+        for (std::size_t j = 0; j < g.rmax.size(); ++j) row[j] += o.branches[b].weight * pt * radius[b][j];
+      }
+      for (const double v : row) regions.push_back(classify(v, options));
+      g.p_joint.push_back(std::move(row));
+      g.region.push_back(std::move(regions));
+    }
+    r.grid = std::move(g);
+  }
+
+  // Extra criteria (PARS networks with constraints): parsed and checked
+  // against the same final distribution; a file that cannot be read or does
+  // not match the system's structure is an error, never a silent 0.
+  for (const std::string& file : criteria_files) {
+    Criterion criterion;
+    try {
+      criterion = load_criterion_file(file);
+    } catch (const CriterionError& e) {
+      return make_error(Error::Code::invalid_argument, e.what());
+    }
+    Result<CriterionVerdict> verdict = evaluate_criterion(criterion, mission, o, r.threshold);
+    if (!verdict) return verdict.error();  // the message already names the file
+    r.criteria.push_back(*verdict);
+  }
+
+  r.go = r.p_joint >= r.threshold;
+  for (const CriterionVerdict& c : r.criteria) {
+    if (!c.holds) {
+      r.go = false;
+      r.failed.push_back("criterion " + c.name + ": P = " + fixed(c.probability, 3) + " < required " +
+                         fixed(c.required, 3) + (c.explanation.empty() ? std::string() : " (" + c.explanation + ")"));
+    }
+  }
+  if (r.p_joint < r.threshold) {
+    r.failed.push_back("P(t <= " + fixed(r.tmax_s, 1) + " s and every r_i <= " + fixed(r.rmax_m, 2) + " m) = " +
+                       fixed(r.p_joint, 3) + " < threshold " + fixed(r.threshold, 3) + " (P(t <= Tmax) = " +
+                       fixed(r.p_time, 3) + ", P(r <= Rmax) = " + fixed(r.p_radius, 3) + ")");
+  }
+  return r;
+}
+
+}  // namespace p3at::verifier

@@ -1,0 +1,300 @@
+#include "models/yaml_access.hpp"
+
+#include <yaml-cpp/eventhandler.h>
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <sstream>
+#include <system_error>
+
+#include "p3at/verifier/models.hpp"
+
+namespace p3at::verifier::models_detail {
+namespace {
+
+// Follows the document stream's events to learn, per document, where its root
+// starts and whether it is null: enough to find the one real document, and to
+// notice yaml-cpp 0.7 making no progress (see load_document).
+class RootEvents : public YAML::EventHandler {
+ public:
+  struct Root {
+    YAML::Mark mark;
+    bool is_null = true;
+  };
+
+  void OnDocumentStart(const YAML::Mark& mark) override {
+    root_ = Root{mark, true};
+    depth_ = 0;
+  }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& mark, YAML::anchor_t) override { node(mark, true); }
+  void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override { node(mark, false); }
+  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t, const std::string&) override {
+    node(mark, false);
+  }
+  void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
+    node(mark, false);
+    ++depth_;
+  }
+  void OnSequenceEnd() override { --depth_; }
+  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    node(mark, false);
+    ++depth_;
+  }
+  void OnMapEnd() override { --depth_; }
+
+  const Root& root() const { return root_; }
+
+ private:
+  void node(const YAML::Mark& mark, bool is_null) {
+    if (depth_ == 0) root_ = Root{mark, is_null};
+  }
+  Root root_;
+  int depth_ = 0;
+};
+
+// A scalar that may be read as a number: plain, or tagged !!int / !!float. A quoted "2" is a string.
+bool may_be_number(const YAML::Node& node) {
+  const std::string& tag = node.Tag();
+  return tag == "?" || tag == "tag:yaml.org,2002:int" || tag == "tag:yaml.org,2002:float";
+}
+
+// YAML allows a leading '+'; from_chars does not.
+std::string_view strip_plus(std::string_view text) {
+  if (text.size() > 1 && text.front() == '+' && text[1] != '-') text.remove_prefix(1);
+  return text;
+}
+
+std::string join(const std::vector<std::string_view>& items) {
+  std::string out;
+  for (std::string_view item : items) {
+    if (!out.empty()) out += ", ";
+    out += item;
+  }
+  return out;
+}
+
+// The last part of a label ("cycle_s" of "robots[0].kinematics.cycle_s").
+std::string_view last_part(std::string_view label) {
+  const std::size_t dot = label.rfind('.');
+  return dot == std::string_view::npos ? label : label.substr(dot + 1);
+}
+
+}  // namespace
+
+void Source::fail(const YAML::Mark& mark, std::string detail) const {
+  if (mark.is_null()) throw ModelsError(name_, 0, 0, std::move(detail));
+  throw ModelsError(name_, mark.line + 1, mark.column + 1, std::move(detail));
+}
+
+YAML::Node load_document(const Source& src, std::string_view text, std::string_view what) {
+  const std::string buffer(text);
+  const std::string empty = "empty " + std::string(what);
+  try {
+    // Walk the events first: yaml-cpp 0.7 reports an endless run of null
+    // documents, never consuming a stray ',' outside a flow collection, so
+    // LoadAll would not return. Two null documents at the same position are
+    // that loop, reported as the malformed input it is.
+    std::istringstream events_in(buffer);
+    YAML::Parser parser(events_in);
+    RootEvents events;
+    bool found = false;
+    bool have_previous = false;
+    RootEvents::Root previous;
+    while (parser.HandleNextDocument(events)) {
+      const RootEvents::Root root = events.root();
+      if (have_previous && root.is_null && previous.is_null && root.mark.pos == previous.mark.pos) {
+        const auto pos = static_cast<std::size_t>(root.mark.pos);
+        src.fail(root.mark, "malformed YAML: unexpected " +
+                                (pos < buffer.size() ? "'" + show(buffer.substr(pos, 1)) + "'" : std::string("end of input")));
+      }
+      if (!root.is_null) {
+        if (found) src.fail(root.mark, "expected a single YAML document, found a second one");
+        found = true;
+      }
+      previous = root;
+      have_previous = true;
+    }
+    if (!found) src.fail(YAML::Mark(), empty);
+    // The stream is known to end and to hold one non-empty document.
+    for (const YAML::Node& document : YAML::LoadAll(buffer)) {
+      if (!document.IsNull()) return document;
+    }
+    src.fail(YAML::Mark(), empty);
+  } catch (const YAML::Exception& e) {
+    src.fail(e.mark, "malformed YAML: " + e.msg);
+  }
+}
+
+std::string show(std::string_view text, std::size_t max_chars) {
+  std::string out;
+  for (char c : text.substr(0, max_chars)) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte >= 0x7f) {
+      constexpr std::array<char, 17> kHex{"0123456789abcdef"};
+      out += "\\x";
+      out += kHex[byte >> 4U];
+      out += kHex[byte & 0xFU];
+    } else {
+      out += c;
+    }
+  }
+  if (text.size() > max_chars) out += "...";
+  return out;
+}
+
+std::string describe(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Undefined: return "nothing";
+    case YAML::NodeType::Null: return "null";
+    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Map: return "a mapping";
+    case YAML::NodeType::Scalar:
+      if (node.Tag() == "?") return "'" + show(node.Scalar()) + "'";
+      if (node.Tag() == "!") return "the quoted string \"" + show(node.Scalar()) + "\"";
+      return "'" + show(node.Scalar()) + "' tagged " + show(node.Tag());
+  }
+  return "something else";
+}
+
+std::string position(const YAML::Mark& mark) {
+  return std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
+}
+
+std::string format_number(double value) {
+  std::array<char, 64> buf{};
+  const auto result = std::to_chars(buf.data(), buf.data() + buf.size(), value);
+  return std::string(buf.data(), result.ptr);
+}
+
+bool Range::contains(double v) const {
+  const bool above = lo_open ? v > lo : v >= lo;
+  const bool below = hi_open ? v < hi : v <= hi;
+  return above && below;
+}
+
+std::string Range::describe(std::string_view what) const {
+  return format_number(lo) + (lo_open ? " < " : " <= ") + std::string(what) + (hi_open ? " < " : " <= ") +
+         format_number(hi);
+}
+
+double read_number(const Source& src, const YAML::Node& node, const YAML::Mark& mark, const std::string& label,
+                   const Range& range) {
+  const std::string text = node.IsScalar() ? node.Scalar() : std::string();
+  const std::string_view digits = strip_plus(text);
+  double value = 0.0;
+  const auto result = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  const bool parsed = result.ec == std::errc() && result.ptr == digits.data() + digits.size();
+  if (!node.IsScalar() || !may_be_number(node) || !parsed || !std::isfinite(value)) {
+    src.fail(mark, "expected a number for '" + label + "', got " + describe(node));
+  }
+  if (!range.contains(value)) {
+    src.fail(mark, "'" + label + "' out of range: " + show(text) + " (expected " + range.describe(last_part(label)) + ")");
+  }
+  return value;
+}
+
+Map::Map(const Source& src, const YAML::Node& node, const YAML::Mark& fallback, std::string path,
+         const std::vector<std::string_view>& allowed)
+    : src_(&src), mark_(node.IsNull() || !node.IsDefined() ? fallback : node.Mark()), path_(std::move(path)) {
+  const std::string where = path_.empty() ? std::string("at the top level") : "in " + path_;
+  if (!node.IsMap()) {
+    src.fail(mark_, "expected a mapping " + (path_.empty() ? std::string("at the top level") : "for '" + path_ + "'") +
+                        ", got " + describe(node));
+  }
+  for (auto it = node.begin(); it != node.end(); ++it) {
+    const YAML::Node key_node = it->first;
+    if (!key_node.IsScalar()) src.fail(key_node.Mark(), "expected a key name " + where + ", got " + describe(key_node));
+    const std::string& key = key_node.Scalar();
+    if (const Entry* first = find(key)) {
+      src.fail(key_node.Mark(),
+               "duplicate key '" + show(key) + "' " + where + " (first at " + position(first->key_node.Mark()) + ")");
+    }
+    bool known = false;
+    for (std::string_view name : allowed) known = known || name == key;
+    if (!known) {
+      src.fail(key_node.Mark(), "unknown key '" + show(key) + "' " + where + " (expected one of " + join(allowed) + ")");
+    }
+    entries_.push_back(Entry{key, key_node, it->second});
+  }
+}
+
+const Map::Entry* Map::find(std::string_view key) const {
+  for (const Entry& e : entries_) {
+    if (e.key == key) return &e;
+  }
+  return nullptr;
+}
+
+const Map::Entry& Map::entry(std::string_view key) const {
+  const Entry* e = find(key);
+  if (e == nullptr) {
+    src_->fail(mark_, "missing required key '" + std::string(key) + "' " +
+                          (path_.empty() ? std::string("at the top level") : "in " + path_));
+  }
+  return *e;
+}
+
+bool Map::has(std::string_view key) const { return find(key) != nullptr; }
+
+YAML::Mark Map::value_mark(std::string_view key) const {
+  const Entry& e = entry(key);
+  return e.value.IsNull() ? e.key_node.Mark() : e.value.Mark();
+}
+
+YAML::Node Map::get(std::string_view key) const { return entry(key).value; }
+
+std::string Map::label(std::string_view key) const {
+  return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+}
+
+double Map::number(std::string_view key, const Range& range) const {
+  return read_number(*src_, entry(key).value, value_mark(key), label(key), range);
+}
+
+double Map::number_or(std::string_view key, const Range& range, double fallback) const {
+  return has(key) ? number(key, range) : fallback;
+}
+
+std::int64_t Map::integer(std::string_view key, std::int64_t lo, std::int64_t hi) const {
+  const Entry& e = entry(key);
+  const std::string text = e.value.IsScalar() ? e.value.Scalar() : std::string();
+  const std::string_view digits = strip_plus(text);
+  std::int64_t value = 0;
+  const auto result = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  const bool whole = !digits.empty() && result.ptr == digits.data() + digits.size();
+  const bool too_big = result.ec == std::errc::result_out_of_range && whole;
+  if (!e.value.IsScalar() || !may_be_number(e.value) || !whole || (result.ec != std::errc() && !too_big)) {
+    src_->fail(value_mark(key), "expected an integer for '" + label(key) + "', got " + describe(e.value));
+  }
+  if (too_big || value < lo || value > hi) {
+    src_->fail(value_mark(key), "'" + label(key) + "' out of range: " + show(text) + " (expected " +
+                                    std::to_string(lo) + " <= " + std::string(key) + " <= " + std::to_string(hi) + ")");
+  }
+  return value;
+}
+
+std::string Map::string(std::string_view key) const {
+  const Entry& e = entry(key);
+  if (!e.value.IsScalar()) {
+    src_->fail(value_mark(key), "expected a string for '" + label(key) + "', got " + describe(e.value));
+  }
+  return e.value.Scalar();
+}
+
+Map Map::map(std::string_view key, const std::vector<std::string_view>& allowed) const {
+  const Entry& e = entry(key);
+  return Map(*src_, e.value, e.key_node.Mark(), label(key), allowed);
+}
+
+YAML::Node Map::list(std::string_view key) const {
+  const Entry& e = entry(key);
+  if (!e.value.IsSequence()) {
+    src_->fail(value_mark(key), "expected a list for '" + label(key) + "', got " + describe(e.value));
+  }
+  return e.value;
+}
+
+}  // namespace p3at::verifier::models_detail
