@@ -116,20 +116,26 @@ class Sequencer {
   }
 
   SystemOutcome run(const TeamSnapshot* from) {
-    std::vector<BranchState> active = from ? start_from(*from) : start();
-    const std::size_t max_steps = models_.budget.max_events * std::max<std::size_t>(1, mission_.robots.size());
-    for (std::size_t step = 0; !active.empty() && step < max_steps; ++step) {
-      std::vector<BranchState> next;
-      for (BranchState& b : active) advance(std::move(b), next);
-      active = merge_and_prune(std::move(next));
-    }
-    for (const BranchState& b : active) outcome_.blocked_mass += b.weight;  // ran out of events: a loop
+    evaluate(from ? start_from(*from) : start());
     return std::move(outcome_);
   }
 
  private:
   std::size_t k() const { return models_.budget.max_components; }
   double cycle_s(std::size_t robot) const { return robot_models_[robot]->kinematics.cycle_s; }
+
+  /// The Def. 10 loop: one event per branch per step until every branch has
+  /// finished; what is still active after Budget::max_events per robot is a
+  /// loop that never ends, counted as blocked.
+  void evaluate(std::vector<BranchState> active) {
+    const std::size_t max_steps = models_.budget.max_events * std::max<std::size_t>(1, mission_.robots.size());
+    for (std::size_t step = 0; !active.empty() && step < max_steps; ++step) {
+      std::vector<BranchState> next;
+      for (BranchState& b : active) advance(std::move(b), next);
+      active = merge_and_prune(std::move(next));
+    }
+    for (const BranchState& b : active) outcome_.blocked_mass += b.weight;
+  }
 
   std::vector<BranchState> start() {
     BranchState b;
@@ -153,15 +159,7 @@ class Sequencer {
     // The error accumulated so far is the nominal prediction's at the entry of
     // each robot's current state (the robots cannot observe it).
     record_entries_ = true;
-    {
-      std::vector<BranchState> active = start();
-      const std::size_t max_steps = models_.budget.max_events * std::max<std::size_t>(1, mission_.robots.size());
-      for (std::size_t step = 0; !active.empty() && step < max_steps; ++step) {
-        std::vector<BranchState> next;
-        for (BranchState& b : active) advance(std::move(b), next);
-        active = merge_and_prune(std::move(next));
-      }
-    }
+    evaluate(start());
     record_entries_ = false;
     outcome_ = SystemOutcome{};
 

@@ -35,6 +35,13 @@ struct Point {
   double time = 0.0, radius = 0.0, joint = 0.0;
 };
 
+/// P(t <= Tmax): needs only the completion times, no disk integrals.
+double time_probability(const SystemOutcome& o, double tmax) {
+  double p = 0.0;
+  for (const Branch& b : o.branches) p += b.weight * b.completion_time_s.cdf(tmax);
+  return p;
+}
+
 Point probabilities(const SystemOutcome& o, const mission::Mission& mission, double tmax, double rmax) {
   Point p;
   for (const Branch& b : o.branches) {
@@ -160,7 +167,7 @@ Result<VerifyResult> verify(const mission::Mission& mission, const Models& model
     Grid g;
     g.tmax = options.tmax_grid.empty() ? std::vector<double>{r.tmax_s} : options.tmax_grid;
     g.rmax = options.rmax_grid.empty() ? std::vector<double>{r.rmax_m} : options.rmax_grid;
-    for (const double t : g.tmax) g.p_time.push_back(probabilities(o, mission, t, r.rmax_m).time);
+    for (const double t : g.tmax) g.p_time.push_back(time_probability(o, t));
     // Per-branch radius probabilities are shared by every Tmax: compute them once.
     std::vector<std::vector<double>> radius(o.branches.size());
     for (std::size_t b = 0; b < o.branches.size(); ++b) {
