@@ -6,7 +6,7 @@
 
 namespace p3at::sim {
 
-double wrap_angle(double angle_rad) {
+double wrap_angle_any(double angle_rad) {
   const double two_pi = 2.0 * std::numbers::pi;
   double a = std::fmod(angle_rad, two_pi);
   if (a <= -std::numbers::pi) a += two_pi;
@@ -35,23 +35,11 @@ std::optional<double> ray_cast(Vec2 origin, double heading_rad, std::span<const 
 
 std::optional<double> ray_cast_dir(Vec2 origin, Vec2 unit_direction, std::span<const Segment> segments,
                                    double max_range_m) {
-  const double dx = unit_direction.x;
-  const double dy = unit_direction.y;
-  std::optional<double> best;
-  for (const Segment& s : segments) {
-    const double ex = s.b.x - s.a.x;
-    const double ey = s.b.y - s.a.y;
-    // Solve origin + t*d = a + u*e for t >= 0, u in [0, 1].
-    const double denom = dx * ey - dy * ex;
-    const double wx = s.a.x - origin.x;
-    const double wy = s.a.y - origin.y;
-    if (std::abs(denom) < 1e-12) continue;  // parallel: a grazing ray returns no echo
-    const double t = (wx * ey - wy * ex) / denom;
-    const double u = (wx * dy - wy * dx) / denom;
-    if (t < 0.0 || u < 0.0 || u > 1.0 || t > max_range_m) continue;
-    if (!best || t < *best) best = t;
-  }
-  return best;
+  double nearest = max_range_m;
+  bool hit = false;
+  for (const Segment& s : segments) hit = ray_hit(origin, unit_direction, s, nearest) || hit;
+  if (!hit) return std::nullopt;
+  return nearest;
 }
 
 namespace {
@@ -93,52 +81,65 @@ double distance_sq_to_segment(Vec2 p, Vec2 a, Vec2 b) {
   return dx * dx + dy * dy;
 }
 
-namespace {
-
-// Half the diagonal, squared: no part of the box is farther than this from its centre.
-double half_diagonal_sq(const Footprint& f) { return (f.length_m * f.length_m + f.width_m * f.width_m) / 4.0; }
-
-}  // namespace
-
-bool intersects(const Footprint& footprint, const Segment& segment) {
-  // Broad phase without trigonometry: a segment farther from the centre than
-  // the half-diagonal cannot touch the box. Collision checks run every physics
-  // substep against every wall, so this is the simulator's hot path.
-  const Vec2 centre{footprint.pose.x_m, footprint.pose.y_m};
-  if (distance_sq_to_segment(centre, segment.a, segment.b) > half_diagonal_sq(footprint)) return false;
-  const double c = std::cos(footprint.pose.theta_rad);
-  const double s = std::sin(footprint.pose.theta_rad);
-  const auto local = [&](Vec2 w) {
-    const double dx = w.x - centre.x;
-    const double dy = w.y - centre.y;
-    return Vec2{c * dx + s * dy, -s * dx + c * dy};
-  };
-  return segment_touches_box(local(segment.a), local(segment.b), footprint.length_m / 2.0, footprint.width_m / 2.0);
+Box make_box(Vec2 centre, double cos_theta, double sin_theta, double length_m, double width_m) {
+  return Box{centre, cos_theta, sin_theta, length_m / 2.0, width_m / 2.0, std::hypot(length_m, width_m) / 2.0};
 }
 
-void footprint_edges(const Footprint& footprint, Segment out[4]) {
-  const double hx = footprint.length_m / 2.0;
-  const double hy = footprint.width_m / 2.0;
-  const Vec2 c[4] = {to_world(footprint.pose, {hx, hy}), to_world(footprint.pose, {-hx, hy}),
-                     to_world(footprint.pose, {-hx, -hy}), to_world(footprint.pose, {hx, -hy})};
+Box to_box(const Footprint& footprint) {
+  return make_box({footprint.pose.x_m, footprint.pose.y_m}, std::cos(footprint.pose.theta_rad),
+                  std::sin(footprint.pose.theta_rad), footprint.length_m, footprint.width_m);
+}
+
+bool intersects(const Footprint& footprint, const Segment& segment) { return intersects(to_box(footprint), segment); }
+
+bool intersects(const Box& box, const Segment& segment) {
+  // Broad phase: a segment farther from the centre than the bounding circle
+  // cannot touch the box. Collision checks run every physics substep, so this
+  // is on the simulator's hot path.
+  if (!segment_within(box.centre, segment, box.radius_m)) return false;
+  const double c = box.cos_theta;
+  const double s = box.sin_theta;
+  const auto local = [&](Vec2 w) {
+    const double dx = w.x - box.centre.x;
+    const double dy = w.y - box.centre.y;
+    return Vec2{c * dx + s * dy, -s * dx + c * dy};
+  };
+  return segment_touches_box(local(segment.a), local(segment.b), box.half_length_m, box.half_width_m);
+}
+
+void footprint_edges(const Footprint& footprint, Segment out[4]) { box_edges(to_box(footprint), out); }
+
+void box_edges(const Box& box, Segment out[4]) {
+  const auto corner = [&](double lx, double ly) {
+    return Vec2{box.centre.x + box.cos_theta * lx - box.sin_theta * ly,
+                box.centre.y + box.sin_theta * lx + box.cos_theta * ly};
+  };
+  const double hx = box.half_length_m;
+  const double hy = box.half_width_m;
+  const Vec2 c[4] = {corner(hx, hy), corner(-hx, hy), corner(-hx, -hy), corner(hx, -hy)};
   for (int i = 0; i < 4; ++i) out[i] = Segment{c[i], c[(i + 1) % 4]};
 }
 
-bool intersects(const Footprint& first, const Footprint& second) {
-  const double reach = std::sqrt(half_diagonal_sq(first)) + std::sqrt(half_diagonal_sq(second));
-  const double dx = first.pose.x_m - second.pose.x_m;
-  const double dy = first.pose.y_m - second.pose.y_m;
+bool intersects(const Footprint& first, const Footprint& second) { return intersects(to_box(first), to_box(second)); }
+
+bool intersects(const Box& first, const Box& second) {
+  const double reach = first.radius_m + second.radius_m;
+  const double dx = first.centre.x - second.centre.x;
+  const double dy = first.centre.y - second.centre.y;
   if (dx * dx + dy * dy > reach * reach) return false;  // too far apart to touch
   // Two rectangles overlap iff an edge of one touches the other, or one contains
   // the other (and then the inner one's centre is inside the outer one).
   Segment edges[4];
-  footprint_edges(second, edges);
+  box_edges(second, edges);
   for (const Segment& e : edges) {
     if (intersects(first, e)) return true;
   }
-  const auto centre_inside = [](const Footprint& box, const Footprint& other) {
-    const Vec2 c = to_local(box.pose, {other.pose.x_m, other.pose.y_m});
-    return std::abs(c.x) <= box.length_m / 2.0 && std::abs(c.y) <= box.width_m / 2.0;
+  const auto centre_inside = [](const Box& box, const Box& other) {
+    const double wx = other.centre.x - box.centre.x;
+    const double wy = other.centre.y - box.centre.y;
+    const double lx = box.cos_theta * wx + box.sin_theta * wy;
+    const double ly = -box.sin_theta * wx + box.cos_theta * wy;
+    return std::abs(lx) <= box.half_length_m && std::abs(ly) <= box.half_width_m;
   };
   return centre_inside(first, second) || centre_inside(second, first);
 }

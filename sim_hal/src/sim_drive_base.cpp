@@ -4,8 +4,6 @@
 #include <cmath>
 #include <numbers>
 
-#include "p3at/protocols/arcos/sip.hpp"
-
 namespace p3at::sim {
 namespace {
 
@@ -17,7 +15,10 @@ double quantise(double value, double step) { return std::round(value / step) * s
 }  // namespace
 
 SimDriveBase::SimDriveBase(World& world, std::size_t robot_index)
-    : world_(world), robot_index_(robot_index), seen_cycle_(world.cycle_count()) {
+    : world_(world),
+      robot_index_(robot_index),
+      params_(arcos::RobotParams::for_subclass(world.robot(robot_index).config().subclass)),
+      seen_cycle_(world.cycle_count()) {
   world_.robot(robot_index_).controller().enable_motors(true);
   refresh();
 }
@@ -73,7 +74,7 @@ Result<bool> SimDriveBase::wait_for_update(int timeout_ms) {
 void SimDriveBase::refresh() {
   const SimRobot& r = world_.robot(robot_index_);
   const MotionController& c = r.controller();
-  const arcos::RobotParams params = arcos::RobotParams::for_subclass(r.config().subclass);
+  const arcos::RobotParams& params = params_;
   seen_cycle_ = world_.cycle_count();
   hal::DriveState& s = state_;
   s.stamp_us = world_.clock().now_us();

@@ -5,8 +5,7 @@ namespace p3at::sim {
 World::World(const WorldConfig& config, std::uint64_t seed) : walls_(config.walls) {
   robots_.reserve(config.robots.size());
   for (std::size_t i = 0; i < config.robots.size(); ++i) robots_.emplace_back(config.robots[i], seed, i);
-  others_.reserve(robots_.size());
-  obstacles_.reserve(walls_.size() + 4 * robots_.size());
+  others_.resize(robots_.empty() ? 0 : robots_.size() - 1);
 }
 
 std::optional<std::size_t> World::find_robot(std::string_view name) const {
@@ -19,30 +18,29 @@ std::optional<std::size_t> World::find_robot(std::string_view name) const {
 void World::step() {
   constexpr std::int64_t substep_us = kCycleUs / kSubstepsPerCycle;
   constexpr double dt_s = static_cast<double>(substep_us) / 1e6;
-  for (SimRobot& r : robots_) r.begin_cycle();
+  for (SimRobot& r : robots_) r.begin_cycle(walls_);
   for (int k = 1; k <= kSubstepsPerCycle; ++k) {
     const std::int64_t now_us = time_us_ + k * substep_us;
     for (std::size_t i = 0; i < robots_.size(); ++i) {
-      others_.clear();
-      for (std::size_t j = 0; j < robots_.size(); ++j) {
-        if (j != i) others_.push_back(robots_[j].footprint());
-      }
-      robots_[i].step(now_us, dt_s, walls_, others_);
+      collect_others(i);
+      robots_[i].step(now_us, dt_s, others_);
     }
   }
   time_us_ += kCycleUs;
   ++cycles_;
   for (std::size_t i = 0; i < robots_.size(); ++i) {
-    obstacles_.assign(walls_.begin(), walls_.end());
-    for (std::size_t j = 0; j < robots_.size(); ++j) {
-      if (j == i) continue;
-      Segment edges[4];
-      footprint_edges(robots_[j].footprint(), edges);
-      obstacles_.insert(obstacles_.end(), edges, edges + 4);
-    }
-    robots_[i].update_sonar(obstacles_);
+    collect_others(i);
+    robots_[i].update_sonar(walls_, others_);
   }
   clock_.advance_to_us(time_us_);
+}
+
+void World::collect_others(std::size_t index) {
+  // others_ has robot_count() - 1 elements from construction on.
+  std::size_t k = 0;
+  for (std::size_t j = 0; j < robots_.size(); ++j) {
+    if (j != index) others_[k++] = robots_[j].box();
+  }
 }
 
 void World::advance_to(std::int64_t time_us) {

@@ -6,6 +6,7 @@
 #include <initializer_list>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string_view>
@@ -124,6 +125,15 @@ class Loader {
     return value;
   }
 
+  bool read_bool(const YAML::Node& node, const std::string& key) const {
+    if (node.IsScalar()) {
+      const std::string& text = node.Scalar();
+      if (text == "true") return true;
+      if (text == "false") return false;
+    }
+    fail(node, "expected true or false for '" + key + "', got " + describe(node));
+  }
+
   std::string read_string(const YAML::Node& node, const std::string& key) const {
     if (!node.IsScalar()) fail(node, "expected a string for '" + key + "', got " + describe(node));
     return node.Scalar();
@@ -183,12 +193,22 @@ class Loader {
       if (k == "max_range_m") robot.sonar.max_range_m = read_number(n, k, 0.0, true);
       if (k == "noise_sd_m") robot.sonar.noise_sd_m = read_number(n, k, 0.0, false);
     });
-    section(node, "gyro", {"bias_degps", "drift_degps_per_s", "noise_sd_degps"},
-            [&](const YAML::Node& n, const std::string& k) {
-              if (k == "bias_degps") robot.gyro.bias_degps = read_number(n, k);
-              if (k == "drift_degps_per_s") robot.gyro.drift_degps_per_s = read_number(n, k);
-              if (k == "noise_sd_degps") robot.gyro.noise_sd_degps = read_number(n, k, 0.0, false);
-            });
+    // A `gyro:` block gives the robot a gyro (opt-in: without one the heading
+    // comes from the wheels, as before gyros were simulated); its fields
+    // override the defaults' field by field; `enabled: false` takes it away.
+    if (const YAML::Node g = node["gyro"]; g.IsDefined() && !g.IsNull()) {
+      GyroModel gyro = robot.gyro.value_or(GyroModel{});
+      bool enabled = true;
+      section(node, "gyro", {"enabled", "bias_degps", "drift_degps_per_s", "noise_sd_degps", "scale_error"},
+              [&](const YAML::Node& n, const std::string& k) {
+                if (k == "enabled") enabled = read_bool(n, k);
+                if (k == "bias_degps") gyro.bias_degps = read_number(n, k);
+                if (k == "drift_degps_per_s") gyro.drift_degps_per_s = read_number(n, k);
+                if (k == "noise_sd_degps") gyro.noise_sd_degps = read_number(n, k, 0.0, false);
+                if (k == "scale_error") gyro.scale_error = read_number(n, k, -1.0, true);
+              });
+      robot.gyro = enabled ? std::optional<GyroModel>(gyro) : std::nullopt;
+    }
     section(node, "limits",
             {"max_trans_vel_mps", "max_rot_vel_degps", "trans_accel_mps2", "trans_decel_mps2", "rot_accel_degps2",
              "rot_decel_degps2"},

@@ -72,9 +72,11 @@ robots:
   CHECK(a.odometry.random_rot_per_unit == doctest::Approx(0.003));
   CHECK(a.sonar.max_range_m == doctest::Approx(4.0));
   CHECK(a.sonar.noise_sd_m == doctest::Approx(0.02));
-  CHECK(a.gyro.bias_degps == doctest::Approx(0.1));
-  CHECK(a.gyro.drift_degps_per_s == doctest::Approx(0.001));
-  CHECK(a.gyro.noise_sd_degps == doctest::Approx(0.05));
+  REQUIRE(a.gyro.has_value());  // a defaults gyro gives every robot one
+  CHECK(a.gyro->bias_degps == doctest::Approx(0.1));
+  CHECK(a.gyro->drift_degps_per_s == doctest::Approx(0.001));
+  CHECK(a.gyro->noise_sd_degps == doctest::Approx(0.05));
+  CHECK(a.gyro->scale_error == doctest::Approx(0.0));
   CHECK(a.limits.max_trans_vel_mps == doctest::Approx(0.5));
   CHECK(a.limits.max_rot_vel_degps == doctest::Approx(60));
   CHECK(a.limits.rot_decel_degps2 == doctest::Approx(80));
@@ -83,6 +85,7 @@ robots:
   CHECK(b.port == -1);
   CHECK(b.start.theta_rad == doctest::Approx(0.0));
   CHECK(b.odometry.right_scale == doctest::Approx(0.99));
+  CHECK(b.gyro.has_value());
 }
 
 TEST_CASE("without a defaults block the built-in MobileSim-like error model applies") {
@@ -93,6 +96,7 @@ TEST_CASE("without a defaults block the built-in MobileSim-like error model appl
   CHECK(w.robots[0].sonar.max_range_m == doctest::Approx(5.0));
   CHECK(w.robots[0].limits.trans_accel_mps2 == doctest::Approx(0.3));
   CHECK(w.robots[0].limits.trans_decel_mps2 == doctest::Approx(0.6));
+  CHECK_FALSE(w.robots[0].gyro.has_value());  // a gyro is opt-in
 }
 
 TEST_CASE("an unknown key is an error at its line and column") {
@@ -142,6 +146,38 @@ TEST_CASE("out-of-range and inconsistent values are errors") {
   CHECK(contains(load_error("walls: [[1, 1, 1, 1]]\nrobots:\n  - {name: a, x_m: 0, y_m: 0}\n"), "distinct end points"));
   CHECK(contains(load_error("robots:\n  - {name: a, x_m: 0, y_m: 0, name: b}\n"), "duplicate key 'name'"));
   CHECK(contains(load_error("seed: -3\nrobots:\n  - {name: a, x_m: 0, y_m: 0}\n"), "non-negative integer"));
+}
+
+TEST_CASE("the gyro block: opt-in per robot, field-wise overrides, enabled: false, errors") {
+  const std::string text = R"(defaults:
+  gyro: {bias_degps: 0.2, noise_sd_degps: 0.1}
+robots:
+  - {name: a, x_m: 0, y_m: 0}
+  - {name: b, x_m: 5, y_m: 0, gyro: {bias_degps: -0.3, scale_error: 0.01}}
+  - {name: c, x_m: 10, y_m: 0, gyro: {enabled: false}}
+)";
+  const WorldConfig w = parse_world(text, "w.yaml");
+  REQUIRE(w.robots[0].gyro.has_value());
+  CHECK(w.robots[0].gyro->bias_degps == doctest::Approx(0.2));
+  REQUIRE(w.robots[1].gyro.has_value());
+  CHECK(w.robots[1].gyro->bias_degps == doctest::Approx(-0.3));   // overridden
+  CHECK(w.robots[1].gyro->noise_sd_degps == doctest::Approx(0.1));  // from defaults
+  CHECK(w.robots[1].gyro->scale_error == doctest::Approx(0.01));
+  CHECK_FALSE(w.robots[2].gyro.has_value());
+
+  // Only the robot with the block has a gyro; an empty block is a perfect gyro.
+  const WorldConfig one = parse_world("robots:\n  - {name: a, x_m: 0, y_m: 0, gyro: {}}\n  - {name: b, x_m: 5, y_m: 0}\n", "w.yaml");
+  REQUIRE(one.robots[0].gyro.has_value());
+  CHECK(one.robots[0].gyro->bias_degps == 0.0);
+  CHECK(one.robots[0].gyro->noise_sd_degps == 0.0);
+  CHECK_FALSE(one.robots[1].gyro.has_value());
+
+  const std::string bad_enabled = load_error("robots:\n  - name: r\n    x_m: 0\n    y_m: 0\n    gyro: {enabled: maybe}\n");
+  CHECK(contains(bad_enabled, "w.yaml:5:21:"));
+  CHECK(contains(bad_enabled, "expected true or false for 'enabled'"));
+  CHECK(contains(load_error("robots:\n  - {name: r, x_m: 0, y_m: 0, gyro: {noise_sd_degps: -1}}\n"), "'noise_sd_degps' >= 0"));
+  CHECK(contains(load_error("robots:\n  - {name: r, x_m: 0, y_m: 0, gyro: {scale_error: -1}}\n"), "'scale_error' > -1"));
+  CHECK(contains(load_error("robots:\n  - {name: r, x_m: 0, y_m: 0, gyro: {bias: 1}}\n"), "unknown key 'bias' in 'gyro'"));
 }
 
 TEST_CASE("broken YAML, an empty file and a missing file are errors with a position or the path") {

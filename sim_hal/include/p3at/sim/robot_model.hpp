@@ -3,6 +3,7 @@
 /// design: its error model (the "real world" the verifier never reads) and its
 /// motion limits. Defaults match MobileSim's P3-AT model where it has one.
 
+#include <optional>
 #include <string>
 
 #include "p3at/sim/geometry.hpp"
@@ -32,12 +33,16 @@ struct SonarModel {
   double noise_sd_m = 0.01;   ///< Gaussian noise added to a hit's range, then clamped to [0, max]
 };
 
-/// Gyro error placeholders (no simulated gyro yet; loaded and validated now so
-/// world files written today stay valid).
+/// A yaw-rate gyro integrated by the firmware into its odometric heading (the
+/// P3-AT's gyro correction): with one, the odometry turns by what the gyro
+/// measures instead of by what the wheels say. Each 10 ms physics step it
+/// measures (1 + scale_error) · true rate + bias + drift · t + N(0, noise²),
+/// t the simulated time since power-up (docs/simulator.md, "Gyro").
 struct GyroModel {
-  double bias_degps = 0.0;          ///< constant rate bias, deg/s
-  double drift_degps_per_s = 0.0;   ///< linear change of the bias, deg/s per s
-  double noise_sd_degps = 0.0;      ///< white rate noise, deg/s
+  double bias_degps = 0.0;          ///< constant rate bias at power-up, deg/s
+  double drift_degps_per_s = 0.0;   ///< linear change of the bias with time, deg/s per s
+  double noise_sd_degps = 0.0;      ///< white rate noise of each 10 ms sample, deg/s
+  double scale_error = 0.0;         ///< measured / true rate - 1 (0.01: reads 1 % high)
 };
 
 /// The drive's physical limits and the firmware's default accelerations.
@@ -59,7 +64,9 @@ struct RobotConfig {
   int port = -1;                    ///< TCP port; -1 = the first port + robot index
   OdometryErrors odometry;
   SonarModel sonar;
-  GyroModel gyro;
+  /// The gyro, if the robot has one (a `gyro:` block in the world file):
+  /// absent, the odometric heading comes from the wheels alone.
+  std::optional<GyroModel> gyro;
   MotionLimits limits;
 };
 

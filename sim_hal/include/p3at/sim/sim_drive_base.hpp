@@ -14,6 +14,7 @@
 #include <cstdint>
 
 #include "p3at/hal/drive_base.hpp"
+#include "p3at/protocols/arcos/sip.hpp"
 #include "p3at/sim/world.hpp"
 
 namespace p3at::sim {
@@ -46,6 +47,7 @@ class SimDriveBase final : public hal::DriveBase {
 
   World& world_;
   std::size_t robot_index_;
+  arcos::RobotParams params_;  ///< the robot's subclass's conversion factors (odometry quantisation)
   std::uint64_t seen_cycle_ = 0;
   hal::DriveState state_;
 };

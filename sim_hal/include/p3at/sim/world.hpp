@@ -65,9 +65,11 @@ class World {
   SimClock clock_;
   std::int64_t time_us_ = 0;
   std::uint64_t cycles_ = 0;
+  /// others_ = the boxes of every robot but `index`, where they are now.
+  void collect_others(std::size_t index);
+
   // Scratch space reused every step (no allocation per cycle).
-  std::vector<Footprint> others_;
-  std::vector<Segment> obstacles_;
+  std::vector<Box> others_;
 };
 
 }  // namespace p3at::sim
