@@ -295,7 +295,7 @@ void register_calibrate(CLI::App& app, int& exit_status) {
   cmd->add_option("--robots", o->robots, "Robots to calibrate (default: every robot of the world or log)")
       ->delimiter(',');
   cmd->add_option("--runs", o->plan.runs, "Runs per robot (each: 2 straights and 4 spins)")->check(CLI::Range(2, 100000));
-  cmd->add_option("--speed", o->plan.speed_mps, "Straight-run speed, m/s: the mission speed (half of the runs at half of it)")
+  cmd->add_option("--speed", o->plan.speed_mps, "Straight-run speed, m/s: the mission speed (half of the straights at half of it)")
       ->check(CLI::Range(0.01, 2.0));
   cmd->add_option("--distance", o->plan.distance_m, "Straight-run length, m (odometric)")->check(CLI::Range(0.2, 100.0));
   cmd->add_option("--spin-deg", o->plan.spin_deg, "Spin angle, degrees (odometric; 180 brings each run back)")

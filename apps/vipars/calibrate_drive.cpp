@@ -37,7 +37,7 @@ bool still(const hal::DriveState& s) {
 class Driver {
  public:
   Driver(hal::DriveBase& base, std::string robot, const TruthProbe& truth, double speedup)
-      : base_(base), robot_(std::move(robot)), truth_(truth), speedup_(speedup) {}
+      : base_(base), robot_(std::move(robot)), truth_(truth), speedup_(speedup), origin_us_(base.state().stamp_us) {}
 
   verifier::Manoeuvre run(const Step& step, std::int64_t id) {
     settle();
@@ -95,8 +95,9 @@ class Driver {
   void expect_truth(bool expected) { truth_expected_ = expected; }
 
  private:
-  // The robot's time: the base's clock, scaled when the robot runs faster than it.
-  double seconds() const { return static_cast<double>(base_.state().stamp_us) / 1e6 * speedup_; }
+  // The robot's time since the calibration began: the base's clock, scaled
+  // when the robot runs faster than it.
+  double seconds() const { return static_cast<double>(base_.state().stamp_us - origin_us_) / 1e6 * speedup_; }
 
   void command_velocity(double trans, double rot) {
     if (const Status st = base_.set_velocity(trans, rot); !st) {
@@ -139,6 +140,7 @@ class Driver {
   std::string robot_;
   const TruthProbe& truth_;
   double speedup_ = 1.0;
+  std::int64_t origin_us_ = 0;
   bool truth_expected_ = false;
 };
 

@@ -72,6 +72,11 @@ void drive_over_arcos(const std::string& url, const std::string& robot, const Ma
   if (const Status st = client.connect(); !st) {
     throw std::runtime_error("cannot connect to " + url + ": " + st.error().message);
   }
+  if (!truth_csv.empty() && !latest_truth(truth_csv, robot)) {
+    (void)client.disconnect();
+    throw std::runtime_error(truth_csv + ": no rows for robot '" + robot +
+                             "' (is --robots the name p3at_sim gives it?)");
+  }
   const TruthProbe truth = [&](bool at_rest) -> std::optional<verifier::TruePose> {
     if (truth_csv.empty() || !at_rest) return std::nullopt;
     return latest_truth(truth_csv, robot);

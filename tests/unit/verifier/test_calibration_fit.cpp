@@ -251,7 +251,10 @@ TEST_CASE("per-unit errors: the per-unit forms are chosen and come back") {
   CHECK(std::sqrt(e.rot_var_per_rad) == near(0.02, 0.15));
   CHECK(std::abs(e.drift_rad_per_m) <= 4.0 * fit_of(r, 0, "drift_deg_per_m").std_error * kDeg);
   CHECK(e.heading_var_per_m < 1e-12);  // none generated
+  // Every row has a true pose: the form is decided on single cycles, decisively.
   CHECK(fit_of(r, 0, "trans_sd_per_sqrt_m").note.find("per-unit form") != std::string::npos);
+  CHECK(fit_of(r, 0, "trans_sd_per_sqrt_m").note.find("single cycles") != std::string::npos);
+  CHECK(fit_of(r, 0, "rot_sd_per_sqrt_rad").note.find("single cycles") != std::string::npos);
 }
 
 TEST_CASE("a tape-measure log (true poses only at each manoeuvre's ends) gives the same fit as full truth") {
@@ -338,6 +341,25 @@ TEST_CASE("data too thin for a model is refused, naming the robot and what is mi
 
   CalibrationLog empty;
   CHECK_THROWS_AS(p3at::verifier::calibrate(empty), p3at::verifier::CalibrationError);
+}
+
+TEST_CASE("a fit no models file can hold is refused: wrong units, impossible message times") {
+  SyntheticRobot robot("theta", p3at_kinematics(), MotionError{}, 9);
+  CalibrationLog log;
+  drive_plan(robot, log, 2, false);
+  CHECK_NOTHROW(p3at::verifier::calibrate(log));
+  CalibrationLog microseconds = log;  // times in the wrong unit: accelerations a million times too large
+  for (Manoeuvre& m : microseconds.manoeuvres) {
+    for (CycleRow& row : m.rows) row.t_s *= 1e-6;
+  }
+  CHECK_THROWS_WITH_AS(p3at::verifier::calibrate(microseconds),
+                       doctest::Contains("the fit is outside the models file's ranges"), p3at::verifier::CalibrationError);
+  CalibrationLog acked_early = log;
+  acked_early.messages.push_back(MessageRow{"theta", 4, 10.0, 10.01, 9.0, 0});
+  CHECK_THROWS_WITH_AS(p3at::verifier::calibrate(acked_early),
+                       "message 4 of theta: delivered and acknowledged must be 0 to 10000.000000 s after it was sent "
+                       "(are the times in seconds?)",
+                       p3at::verifier::CalibrationError);
 }
 
 TEST_CASE("a manoeuvre without true poses still feeds the kinematics (hardware runs before the tape measure)") {

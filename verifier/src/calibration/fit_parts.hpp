@@ -36,6 +36,11 @@ struct Measure {
   bool has_truth = false;
   double true_rot_rad = 0.0;     ///< the true heading change, unwrapped next to odo_rot_rad
   double true_dist_m = 0.0;      ///< signed path length (the chord, corrected for constant curvature)
+  /// With a true pose on every row: each cycle's odometric and true increment
+  /// along the manoeuvre's axis (ds for a straight, dtheta for a spin).
+  bool truth_every_row = false;
+  std::vector<double> cycle_odo;
+  std::vector<double> cycle_true;
 };
 Measure measure(const Manoeuvre& m);
 
@@ -51,9 +56,17 @@ struct ScaleFit {
   double residual_rms = 0.0;  ///< of y - scale * x
   std::string form_note;      ///< why this form
 };
-/// `per_cycle`: Q is known (rows every cycle). `allow_relative`: the model has a relative term for it.
+/// Increments of single cycles, odometric and true, when every row has a true pose.
+struct CycleIncrements {
+  std::vector<double> odo;
+  std::vector<double> truth;
+};
+/// `per_cycle`: Q is known (rows every cycle). `allow_relative`: the model has
+/// a relative term for it. `cycles`: when not empty, the form is decided on
+/// them instead of on the manoeuvres (far more observations).
 ScaleFit fit_scale(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& length,
-                   const std::vector<double>& length_sq, bool per_cycle, bool allow_relative);
+                   const std::vector<double>& length_sq, bool per_cycle, bool allow_relative,
+                   const CycleIncrements& cycles = {});
 
 struct MotionFit {
   MotionError motion;

@@ -2,6 +2,7 @@
 // the true motion between its two ends. Only the ends' true poses are used,
 // so a tape measure at the start and the end of each run is enough.
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -63,6 +64,27 @@ Measure measure(const Manoeuvre& m) {
   const double half = out.true_rot_rad / 2.0;
   const double arc = std::abs(half) > 1e-9 && std::abs(half) < 1.5 ? chord * half / std::sin(half) : chord;
   out.true_dist_m = along < 0.0 ? -arc : arc;
+
+  // With a true pose on every row (motion capture, a simulator), each cycle
+  // is an observation too: its odometric and true increment along the
+  // manoeuvre's own axis (distance for a straight, rotation for a spin).
+  const bool every_row = std::all_of(m.rows.begin(), m.rows.end(), [](const CycleRow& r) { return r.truth.has_value(); });
+  if (!every_row) return out;
+  out.truth_every_row = true;
+  const std::vector<Interval> ivs = intervals(m);
+  for (std::size_t i = 0; i < ivs.size(); ++i) {
+    const TruePose& a = *m.rows[i].truth;
+    const TruePose& b = *m.rows[i + 1].truth;
+    const double dth = wrap(b.theta_rad - a.theta_rad);
+    if (m.kind == ManoeuvreKind::spin) {
+      out.cycle_odo.push_back(ivs[i].dtheta_rad);
+      out.cycle_true.push_back(dth);
+    } else {
+      const double mid = a.theta_rad + dth / 2.0;
+      out.cycle_odo.push_back(ivs[i].ds_m);
+      out.cycle_true.push_back((b.x_m - a.x_m) * std::cos(mid) + (b.y_m - a.y_m) * std::sin(mid));
+    }
+  }
   return out;
 }
 

@@ -7,9 +7,10 @@
 // so each manoeuvre is one observation (x = odometric total, y = true total)
 // of a regression through the origin whose residual variance is proportional
 // to a known length: weighted least squares gives the scale, the weighted
-// residuals the variance. Which of the two variance forms applies is told
-// apart by runs at different speeds (the driver runs half of them slower):
-// the form with the higher likelihood wins.
+// residuals the variance. Which of the two variance forms applies is decided
+// on single cycles when every row has a true pose (a ramp's small increments
+// against the cruise's large ones), else on the runs, which the driver makes
+// at two speeds: the form with the higher likelihood wins.
 
 #include <algorithm>
 #include <cmath>
@@ -50,6 +51,35 @@ double log_likelihood(const std::vector<double>& x, const std::vector<double>& y
   return ll - n / 2.0;
 }
 
+// The best log-likelihood (constants dropped) of residuals whose variance is
+// s * (1 + rho * z_i), over s and rho >= 0: a floor (the measuring's own
+// noise: odometry counts, a motion-capture system's jitter) plus a term
+// growing with z. Profiled over rho on a grid fine enough to compare forms.
+double floor_plus_form_log_likelihood(const std::vector<double>& r2, const std::vector<double>& z) {
+  std::vector<double> positive;
+  for (double v : z) {
+    if (v > 0.0) positive.push_back(v);
+  }
+  if (positive.empty()) return -HUGE_VAL;
+  std::nth_element(positive.begin(), positive.begin() + static_cast<std::ptrdiff_t>(positive.size() / 2), positive.end());
+  const double z_mid = positive[positive.size() / 2];
+  const auto n = static_cast<double>(r2.size());
+  double best = -HUGE_VAL;
+  for (int step = -1; step <= 48; ++step) {
+    const double rho = step < 0 ? 0.0 : std::pow(10.0, -3.0 + 0.25 * step) / z_mid;
+    double s = 0.0;
+    double log_sum = 0.0;
+    for (std::size_t i = 0; i < r2.size(); ++i) {
+      const double f = 1.0 + rho * z[i];
+      s += r2[i] / f;
+      log_sum += std::log(f);
+    }
+    s = std::max(s / n, 1e-300);
+    best = std::max(best, -0.5 * (n * std::log(s) + log_sum));
+  }
+  return best;
+}
+
 std::string fixed(double v, int digits) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", digits, v);
@@ -72,11 +102,29 @@ void add_sd(std::vector<ParameterFit>& fits, const std::string& name, double var
 }  // namespace
 
 ScaleFit fit_scale(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& length,
-                   const std::vector<double>& length_sq, bool per_cycle, bool allow_relative) {
+                   const std::vector<double>& length_sq, bool per_cycle, bool allow_relative,
+                   const CycleIncrements& cycles) {
   const std::size_t n = x.size();
   ScaleFit out;
   if (!allow_relative) {
     out.relative = false;
+  } else if (!cycles.odo.empty()) {
+    // Every cycle observed: the increments range from a ramp's first to the
+    // cruise's, which tells the forms apart far better than whole runs.
+    const double k = weighted_scale(x, y, length);
+    std::vector<double> r2, unit, rel;
+    for (std::size_t i = 0; i < cycles.odo.size(); ++i) {
+      const double r = cycles.truth[i] - k * cycles.odo[i];
+      r2.push_back(r * r);
+      unit.push_back(std::abs(cycles.odo[i]));
+      rel.push_back(cycles.odo[i] * cycles.odo[i]);
+    }
+    const double ll_unit = floor_plus_form_log_likelihood(r2, unit);
+    const double ll_rel = floor_plus_form_log_likelihood(r2, rel);
+    out.relative = ll_rel >= ll_unit;
+    out.form_note = std::string(out.relative ? "relative" : "per-unit") + " form: log-likelihood " +
+                    fixed(std::abs(ll_rel - ll_unit), 1) + " above the " + (out.relative ? "per-unit" : "relative") +
+                    " form's over " + std::to_string(cycles.odo.size()) + " single cycles";
   } else if (!per_cycle) {
     out.relative = false;
     out.form_note = "per-unit form: the log has no per-cycle rows to tell the forms apart";
@@ -122,6 +170,19 @@ MotionFit fit_motion(const std::vector<Measure>& straights, const std::vector<Me
   const auto per_cycle = [](const std::vector<Measure>& ms) {
     return std::all_of(ms.begin(), ms.end(), [](const Measure& m) { return m.cycles >= 3; });
   };
+  // Single cycles, when every row of every manoeuvre has a true pose.
+  const auto cycles_of = [](const std::vector<Measure>& ms) {
+    CycleIncrements c;
+    const bool all = std::all_of(ms.begin(), ms.end(), [](const Measure& m) { return m.truth_every_row && m.cycles >= 3; });
+    if (!all) return c;
+    for (const Measure& m : ms) {
+      c.odo.insert(c.odo.end(), m.cycle_odo.begin(), m.cycle_odo.end());
+      c.truth.insert(c.truth.end(), m.cycle_true.begin(), m.cycle_true.end());
+    }
+    return c;
+  };
+  const CycleIncrements spin_cycles = cycles_of(spins);
+  const CycleIncrements straight_cycles = cycles_of(straights);
   std::vector<double> sx, sy, sl, sq;  // spins
   std::vector<double> tx, ty, tl, tq;  // straights: distance
   for (const Measure& m : spins) {
@@ -146,14 +207,14 @@ MotionFit fit_motion(const std::vector<Measure>& straights, const std::vector<Me
   for (int pass = 0; pass < 2; ++pass) {
     sy.clear();
     for (const Measure& m : spins) sy.push_back(m.true_rot_rad - drift * m.odo_dist_m);
-    rot = fit_scale(sx, sy, sl, sq, per_cycle(spins), true);
+    rot = fit_scale(sx, sy, sl, sq, per_cycle(spins), true, spin_cycles);
     for (std::size_t j = 0; j < straights.size(); ++j) {
       hy[j] = straights[j].true_rot_rad - rot.scale * straights[j].odo_rot_rad;
     }
     heading = fit_scale(tx, hy, tl, tq, false, false);
     drift = heading.scale;
   }
-  const ScaleFit trans = fit_scale(tx, ty, tl, tq, per_cycle(straights), true);
+  const ScaleFit trans = fit_scale(tx, ty, tl, tq, per_cycle(straights), true, straight_cycles);
 
   // The straights' heading residuals also hold the rotation error of their
   // odometric turns; what is left is the heading error per metre.
