@@ -1,24 +1,11 @@
 #include "setup.hpp"
 
-#include <exception>
 #include <utility>
 
 #include "p3at/hal/lcm_team_link.hpp"
 #include "p3at/hal/team_protocol.hpp"
-#include "p3at/protocols/mission/loader.hpp"
 
 namespace p3at::mission_exec {
-
-Result<mission::Mission> load_mission(const std::string& path) {
-  try {
-    return mission::load_mission_file(path);
-  } catch (const mission::MissionError& e) {
-    return make_error(Error::Code::invalid_argument, e.what());
-  } catch (const std::exception& e) {
-    // Loading is configuration: anything else it throws is still a bad-input report.
-    return make_error(Error::Code::invalid_argument, path + ": " + e.what());
-  }
-}
 
 Result<std::size_t> find_robot(const mission::Mission& mission, const std::string& robot_name) {
   if (const std::optional<std::size_t> index = mission.find_robot(robot_name)) return *index;

@@ -1,6 +1,8 @@
 #pragma once
 // mission_exec's configuration steps, each returning an error message a person
-// can act on (exit code 2: bad input). No I/O beyond reading files.
+// can act on (exit code 2: bad input). No I/O beyond reading files. (The
+// mission itself is loaded by the launch gate's pre-launch check, which hashes
+// and parses the very same bytes.)
 
 #include <cstddef>
 #include <memory>
@@ -13,9 +15,6 @@
 #include "p3at/protocols/mission/mission.hpp"
 
 namespace p3at::mission_exec {
-
-/// Loads and validates the mission file; the error is "file:line:column: detail".
-Result<mission::Mission> load_mission(const std::string& path);
 
 /// Index of `robot_name` in the mission; the error lists the robots it has.
 Result<std::size_t> find_robot(const mission::Mission& mission, const std::string& robot_name);

@@ -15,8 +15,10 @@ inline constexpr int kExitFailed = 3;    ///< the command could not complete (e.
 void register_simulate(CLI::App& app, int& exit_status);
 void register_translate(CLI::App& app, int& exit_status);
 void register_verify(CLI::App& app, int& exit_status);
+void register_gate(CLI::App& app, int& exit_status);
 void register_calibrate(CLI::App& app, int& exit_status);
 void register_validate(CLI::App& app, int& exit_status);
+void register_report(CLI::App& app, int& exit_status);
 
 
 }  // namespace p3at::vipars

@@ -32,6 +32,7 @@
 #include "p3at/team_sim/run_table.hpp"
 #include "p3at/team_sim/team_run.hpp"
 #include "range_arg.hpp"
+#include "validation_json.hpp"
 
 namespace p3at::vipars {
 namespace {
@@ -153,77 +154,18 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_;
 };
 
-// ---- JSON (the keys `vipars verify` uses too) ----
-
-void put_estimate(Json& j, const std::string& key, const team_sim::Estimate& e) {
-  j[key] = e.p;
-  j[key + "_ci_low"] = e.ci_low;
-  j[key + "_ci_high"] = e.ci_high;
-}
-
-Json optional_number(const std::optional<double>& value) { return value ? Json(*value) : Json(nullptr); }
-
-Json grid_to_json(const team_sim::EmpiricalGrid& g, const ValidateOptions& o) {
-  const auto field = [](const std::vector<team_sim::Estimate>& v, double team_sim::Estimate::*member) {
-    Json out = Json::array();
-    for (const auto& e : v) out.push_back(e.*member);
-    return out;
-  };
-  const auto table = [&](double team_sim::Estimate::*member) {
-    Json out = Json::array();
-    for (const auto& row : g.joint) out.push_back(field(row, member));
-    return out;
-  };
-  Json regions = Json::array();
-  for (const auto& row : g.joint) {
-    Json r = Json::array();
-    for (const auto& e : row) r.push_back(team_sim::to_string(team_sim::classify(e.p, o.region_low, o.region_high)));
-    regions.push_back(std::move(r));
-  }
-  Json j;
-  j["tmax"] = g.tmax;
-  j["rmax"] = g.rmax;
-  j["p_time"] = field(g.time, &team_sim::Estimate::p);
-  j["p_radius"] = field(g.radius, &team_sim::Estimate::p);
-  j["p_joint"] = table(&team_sim::Estimate::p);
-  j["region"] = std::move(regions);
-  j["p_time_ci_low"] = field(g.time, &team_sim::Estimate::ci_low);
-  j["p_time_ci_high"] = field(g.time, &team_sim::Estimate::ci_high);
-  j["p_radius_ci_low"] = field(g.radius, &team_sim::Estimate::ci_low);
-  j["p_radius_ci_high"] = field(g.radius, &team_sim::Estimate::ci_high);
-  j["p_joint_ci_low"] = table(&team_sim::Estimate::ci_low);
-  j["p_joint_ci_high"] = table(&team_sim::Estimate::ci_high);
-  return j;
-}
-
 Json report_to_json(const Report& r, const ValidateOptions& o) {
-  const auto& p = r.point;
-  Json j;
-  j["mission"] = r.mission_name;
-  j["tmax_s"] = p.tmax_s;
-  j["rmax_m"] = p.rmax_m;
-  j["threshold"] = r.threshold;
-  put_estimate(j, "p_time", p.time);
-  put_estimate(j, "p_radius", p.radius);
-  put_estimate(j, "p_joint", p.joint);
-  j["runs"] = p.runs;
-  j["failed_runs"] = p.failed_runs;
-  j["robots"] = Json::array();
-  for (const auto& robot : p.robots) {
-    Json jr;
-    jr["name"] = robot.name;
-    put_estimate(jr, "p_radius", robot.radius);
-    jr["dist_mean_m"] = robot.dist_mean_m;
-    jr["dist_sd_m"] = robot.dist_sd_m;
-    j["robots"].push_back(std::move(jr));
-  }
-  j["completion_mean_s"] = optional_number(p.completion_mean_s);
-  j["completion_sd_s"] = optional_number(p.completion_sd_s);
-  if (r.grid) j["grid"] = grid_to_json(*r.grid, o);
-  j["seed"] = o.seed;
-  j["world"] = o.world_file;
-  j["mission_file"] = o.mission_file;
-  return j;
+  ValidationSummary summary;
+  summary.mission_name = r.mission_name;
+  summary.threshold = r.threshold;
+  summary.point = &r.point;
+  summary.grid = r.grid ? &*r.grid : nullptr;
+  summary.region_low = o.region_low;
+  summary.region_high = o.region_high;
+  summary.seed = o.seed;
+  summary.world_file = o.world_file;
+  summary.mission_file = o.mission_file;
+  return validation_json(summary);
 }
 
 // ---- text ----

@@ -35,7 +35,8 @@ class LcmTeamLink final : public DatagramTeamLink {
   }
 
   Status subscribe() {
-    for (const auto channel : {TeamChannel::notify, TeamChannel::status}) {
+    // Telemetry too: in-mission re-verification reads where the teammates are.
+    for (const auto channel : {TeamChannel::notify, TeamChannel::status, TeamChannel::gate, TeamChannel::telemetry}) {
       auto* s = lcm_->subscribe(std::string(channel_name(channel)), &LcmTeamLink::on_message, this);
       if (s == nullptr) {
         return make_error(Error::Code::io, "team link " + url_ + ": cannot subscribe to " +

@@ -47,4 +47,10 @@ Status DatagramTeamLink::publish_status(const TeamStatus& status) {
   return transmit(datagram.value(), now_us_);
 }
 
+Status DatagramTeamLink::publish_verdict(const GateVerdict& verdict) {
+  auto datagram = protocol_.verdict(verdict);
+  if (!datagram) return datagram.error();
+  return transmit(datagram.value(), now_us_);
+}
+
 }  // namespace p3at::hal

@@ -66,7 +66,8 @@ TeamProtocol::TeamProtocol(TeamLinkConfig config, const TeamKey& key)
       key_(key),
       next_notify_seq_(config_.first_seq),
       next_status_seq_(config_.first_seq),
-      next_telemetry_seq_(config_.first_seq) {}
+      next_telemetry_seq_(config_.first_seq),
+      next_verdict_seq_(config_.first_seq) {}
 
 void TeamProtocol::note_time(std::int64_t now_us) {
   if (!now_us_ || now_us > *now_us_) now_us_ = now_us;
@@ -143,7 +144,8 @@ void TeamProtocol::receive(std::int64_t now_us, TeamChannel channel, std::span<c
   switch (channel) {
     case TeamChannel::notify: receive_notification(bytes, delivered, out); return;
     case TeamChannel::status: receive_status(bytes); return;
-    case TeamChannel::telemetry: return;  // for monitors and loggers; robots do not act on it
+    case TeamChannel::telemetry: receive_telemetry(bytes); return;
+    case TeamChannel::gate: receive_verdict(bytes); return;
   }
 }
 
@@ -218,6 +220,47 @@ void TeamProtocol::send_ack(const NotificationWire& notification, std::vector<Te
   if (bytes) out.push_back({TeamChannel::notify, std::move(bytes.value())});
 }
 
+bool TeamProtocol::admit(const std::string& robot, const std::string& mission_id, bool tag_ok, std::uint64_t seq,
+                         std::optional<std::uint64_t> Peer::*last_seq) {
+  if (robot == config_.self) return false;  // our own, looped back by multicast
+  if (mission_id != config_.mission_id) {
+    ++stats_.rejected_other_mission;
+    return false;
+  }
+  if (!in_roster(robot)) {
+    ++stats_.rejected_unknown_sender;
+    return false;
+  }
+  if (!tag_ok) {
+    ++stats_.rejected_bad_tag;
+    return false;
+  }
+  auto& last = peers_[robot].*last_seq;
+  // Only a newer message replaces the one we hold: an older one is stale
+  // (reordered) or replayed.
+  if (last && seq <= *last) {
+    ++stats_.rejected_replay;
+    return false;
+  }
+  last = seq;
+  return true;
+}
+
+template <class Item>
+void TeamProtocol::hold(std::vector<Item>& held, const std::string& robot, const Item& item) {
+  auto same_robot = [&](const Item& h) { return h.robot == robot; };
+  if (auto it = std::find_if(held.begin(), held.end(), same_robot); it != held.end()) {
+    *it = item;
+    return;
+  }
+  auto roster_index = [&](const std::string& name) {
+    return std::find(config_.roster.begin(), config_.roster.end(), name) - config_.roster.begin();
+  };
+  auto pos = std::find_if(held.begin(), held.end(),
+                          [&](const Item& h) { return roster_index(h.robot) > roster_index(robot); });
+  held.insert(pos, item);
+}
+
 void TeamProtocol::receive_status(std::span<const std::uint8_t> bytes) {
   auto decoded = decode_status(bytes, key_);
   if (!decoded) {
@@ -225,40 +268,32 @@ void TeamProtocol::receive_status(std::span<const std::uint8_t> bytes) {
     return;
   }
   const StatusWire& w = decoded->wire;
-  const std::string& robot = w.status.robot;
-  if (robot == config_.self) return;
-  if (w.mission_id != config_.mission_id) {
-    ++stats_.rejected_other_mission;
+  if (!admit(w.status.robot, w.mission_id, decoded->tag_ok, w.seq, &Peer::last_status_seq)) return;
+  hold(teammate_status_, w.status.robot, w.status);
+}
+
+void TeamProtocol::receive_verdict(std::span<const std::uint8_t> bytes) {
+  auto decoded = decode_verdict(bytes, key_);
+  if (!decoded) {
+    ++stats_.malformed;
     return;
   }
-  if (!in_roster(robot)) {
-    ++stats_.rejected_unknown_sender;
+  const VerdictWire& w = decoded->wire;
+  if (!admit(w.verdict.robot, w.mission_id, decoded->tag_ok, w.seq, &Peer::last_verdict_seq)) return;
+  ++stats_.verdicts_accepted;
+  hold(teammate_verdicts_, w.verdict.robot, w.verdict);
+}
+
+void TeamProtocol::receive_telemetry(std::span<const std::uint8_t> bytes) {
+  auto decoded = decode_telemetry(bytes, key_);
+  if (!decoded) {
+    ++stats_.malformed;
     return;
   }
-  if (!decoded->tag_ok) {
-    ++stats_.rejected_bad_tag;
-    return;
-  }
-  auto& last = peers_[robot].last_status_seq;
-  // Only a newer status replaces the one we hold: an older one is stale
-  // (reordered) or replayed.
-  if (last && w.seq <= *last) {
-    ++stats_.rejected_replay;
-    return;
-  }
-  last = w.seq;
-  auto same_robot = [&](const TeamStatus& s) { return s.robot == robot; };
-  if (auto it = std::find_if(teammate_status_.begin(), teammate_status_.end(), same_robot);
-      it != teammate_status_.end()) {
-    *it = w.status;
-    return;
-  }
-  auto roster_index = [&](const std::string& name) {
-    return std::find(config_.roster.begin(), config_.roster.end(), name) - config_.roster.begin();
-  };
-  auto pos = std::find_if(teammate_status_.begin(), teammate_status_.end(),
-                          [&](const TeamStatus& s) { return roster_index(s.robot) > roster_index(robot); });
-  teammate_status_.insert(pos, w.status);
+  const TelemetryWire& w = decoded->wire;
+  if (!admit(w.telemetry.robot, w.mission_id, decoded->tag_ok, w.seq, &Peer::last_telemetry_seq)) return;
+  ++stats_.telemetry_accepted;
+  hold(teammate_telemetry_, w.telemetry.robot, w.telemetry);
 }
 
 Result<TeamDatagram> TeamProtocol::telemetry(const Telemetry& telemetry) {
@@ -287,6 +322,19 @@ Result<TeamDatagram> TeamProtocol::status(const TeamStatus& status) {
   auto bytes = encode_status(w, key_);
   if (!bytes) return bytes.error();
   return TeamDatagram{TeamChannel::status, std::move(bytes.value())};
+}
+
+Result<TeamDatagram> TeamProtocol::verdict(const GateVerdict& verdict) {
+  VerdictWire w;
+  w.utime_us = utime();
+  w.mission_id = config_.mission_id;
+  w.seq = next_verdict_seq_++;
+  w.verdict = verdict;
+  w.verdict.robot = config_.self;
+  w.verdict.detail = cut(verdict.detail);
+  auto bytes = encode_verdict(w, key_);
+  if (!bytes) return bytes.error();
+  return TeamDatagram{TeamChannel::gate, std::move(bytes.value())};
 }
 
 bool TeamProtocol::acknowledged(std::uint64_t seq) const {

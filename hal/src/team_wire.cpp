@@ -5,7 +5,9 @@
 #include <climits>
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
 
+#include "p3at_lcm/gate_verdict_t.hpp"
 #include "p3at_lcm/mission_status_t.hpp"
 #include "p3at_lcm/notification_t.hpp"
 #include "p3at_lcm/telemetry_t.hpp"
@@ -19,6 +21,21 @@ static_assert(TeamKey::kBytes == crypto_auth_KEYBYTES);
 namespace {
 
 constexpr std::uint64_t kMaxWireUnsigned = static_cast<std::uint64_t>(INT64_MAX);
+
+bool is_mission_hash(const std::string& text) {
+  if (text.size() != kMissionHashHexDigits) return false;
+  for (const char c : text) {
+    if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'))) return false;
+  }
+  return true;
+}
+
+bool all_finite(std::initializer_list<double> values) {
+  for (const double v : values) {
+    if (!std::isfinite(v)) return false;
+  }
+  return true;
+}
 
 Error malformed(std::string_view type, std::string_view what) {
   return make_error(Error::Code::protocol, "malformed " + std::string(type) + ": " + std::string(what));
@@ -110,6 +127,7 @@ std::string_view channel_name(TeamChannel channel) {
     case TeamChannel::notify: return kNotifyChannel;
     case TeamChannel::telemetry: return kTelemetryChannel;
     case TeamChannel::status: return kStatusChannel;
+    case TeamChannel::gate: return kGateChannel;
   }
   return "?";
 }
@@ -118,6 +136,7 @@ std::optional<TeamChannel> channel_from_name(std::string_view name) {
   if (name == kNotifyChannel) return TeamChannel::notify;
   if (name == kTelemetryChannel) return TeamChannel::telemetry;
   if (name == kStatusChannel) return TeamChannel::status;
+  if (name == kGateChannel) return TeamChannel::gate;
   return std::nullopt;
 }
 
@@ -201,6 +220,35 @@ Result<std::vector<std::uint8_t>> encode_telemetry(const TelemetryWire& wire, co
   return encode_tagged(std::move(msg), key);
 }
 
+Result<std::vector<std::uint8_t>> encode_verdict(const VerdictWire& wire, const TeamKey& key) {
+  const GateVerdict& v = wire.verdict;
+  FieldCheck check("gate verdict");
+  check.text("mission_id", wire.mission_id, kMaxTeamNameBytes);
+  check.text("robot", v.robot, kMaxTeamNameBytes);
+  check.text("detail", v.detail, kMaxTeamTextBytes);
+  check.count("seq", wire.seq);
+  check.condition(is_mission_hash(v.mission_hash), "mission_hash is not 64 lowercase hexadecimal digits");
+  check.condition(all_finite({v.p_time, v.p_radius, v.p_joint, v.threshold, v.tmax_s, v.rmax_m}),
+                  "a probability or criterion is not finite");
+  if (auto s = check.result(); !s) return s.error();
+
+  p3at_lcm::gate_verdict_t msg;
+  msg.utime = wire.utime_us;
+  msg.mission_id = wire.mission_id;
+  msg.robot = v.robot;
+  msg.seq = static_cast<std::int64_t>(wire.seq);
+  msg.mission_hash = v.mission_hash;
+  msg.decision = to_string(v.decision);
+  msg.p_time = v.p_time;
+  msg.p_radius = v.p_radius;
+  msg.p_joint = v.p_joint;
+  msg.threshold = v.threshold;
+  msg.tmax_s = v.tmax_s;
+  msg.rmax_m = v.rmax_m;
+  msg.detail = v.detail;
+  return encode_tagged(std::move(msg), key);
+}
+
 Result<Verified<NotificationWire>> decode_notification(std::span<const std::uint8_t> bytes, const TeamKey& key) {
   p3at_lcm::notification_t msg;
   if (!decode_checked(bytes, &wire_check::notification_layout_ok, msg)) {
@@ -264,6 +312,39 @@ Result<Verified<TelemetryWire>> decode_telemetry(std::span<const std::uint8_t> b
   t.missed_updates = static_cast<std::uint64_t>(msg.cycle.missed_updates);
   t.cycle_p50_us = msg.cycle.p50_us;
   t.cycle_p99_us = msg.cycle.p99_us;
+  out.tag_ok = tag_verifies(std::move(msg), key);
+  return out;
+}
+
+Result<Verified<VerdictWire>> decode_verdict(std::span<const std::uint8_t> bytes, const TeamKey& key) {
+  p3at_lcm::gate_verdict_t msg;
+  if (!decode_checked(bytes, &wire_check::verdict_layout_ok, msg)) {
+    return malformed("gate verdict", "not a well-formed p3at_lcm.gate_verdict_t");
+  }
+  const std::optional<GateDecision> decision = gate_decision_from_string(msg.decision);
+  if (!decision) return malformed("gate verdict", "decision is not GO, NO-GO or OVERRIDE");
+  if (!is_mission_hash(msg.mission_hash)) {
+    return malformed("gate verdict", "mission_hash is not 64 lowercase hexadecimal digits");
+  }
+  if (!all_finite({msg.p_time, msg.p_radius, msg.p_joint, msg.threshold, msg.tmax_s, msg.rmax_m})) {
+    return malformed("gate verdict", "a probability or criterion is not finite");
+  }
+  Verified<VerdictWire> out;
+  VerdictWire& w = out.wire;
+  GateVerdict& v = w.verdict;
+  w.utime_us = msg.utime;
+  w.mission_id = msg.mission_id;
+  w.seq = static_cast<std::uint64_t>(msg.seq);
+  v.robot = msg.robot;
+  v.mission_hash = msg.mission_hash;
+  v.decision = *decision;
+  v.p_time = msg.p_time;
+  v.p_radius = msg.p_radius;
+  v.p_joint = msg.p_joint;
+  v.threshold = msg.threshold;
+  v.tmax_s = msg.tmax_s;
+  v.rmax_m = msg.rmax_m;
+  v.detail = msg.detail;
   out.tag_ok = tag_verifies(std::move(msg), key);
   return out;
 }

@@ -148,4 +148,19 @@ bool telemetry_layout_ok(std::span<const std::uint8_t> bytes, std::int64_t finge
   return r.at_end();
 }
 
+bool verdict_layout_ok(std::span<const std::uint8_t> bytes, std::int64_t fingerprint) {
+  Reader r(bytes);
+  r.fingerprint(fingerprint);
+  r.i64();                           // utime
+  r.string(kMaxTeamNameBytes);       // mission_id
+  r.string(kMaxTeamNameBytes);       // robot
+  r.non_negative_i64();              // seq
+  r.string(kMissionHashHexDigits);   // mission_hash (its digits are checked after decoding)
+  r.string(kMaxTeamNameBytes);       // decision (its value is checked after decoding)
+  r.skip_doubles(6);                 // p_time, p_radius, p_joint, threshold, tmax_s, rmax_m
+  r.string(kMaxTeamTextBytes);       // detail
+  r.tag();
+  return r.at_end();
+}
+
 }  // namespace p3at::hal::wire_check

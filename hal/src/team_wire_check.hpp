@@ -14,5 +14,6 @@ namespace p3at::hal::wire_check {
 bool notification_layout_ok(std::span<const std::uint8_t> bytes, std::int64_t fingerprint);
 bool status_layout_ok(std::span<const std::uint8_t> bytes, std::int64_t fingerprint);
 bool telemetry_layout_ok(std::span<const std::uint8_t> bytes, std::int64_t fingerprint);
+bool verdict_layout_ok(std::span<const std::uint8_t> bytes, std::int64_t fingerprint);
 
 }  // namespace p3at::hal::wire_check

@@ -1,7 +1,9 @@
 // team_peer: a stand-in robot on the team link, for hardware-in-the-loop tests.
 //   team_peer run --url U --mission M --name alpha --roster alpha,bravo --key team.key
 //                 [--notify at_door --to bravo] [--phase running] [--duration-s 30]
-//       Opens the real LcmTeamLink, publishes telemetry and status every
+//                 [--verdict GO --hash HEX]
+//       Opens the real LcmTeamLink, publishes telemetry and status (and, with
+//       --verdict, a launch-gate verdict for mission hash --hash) every
 //       --publish-ms, optionally notifies once, and logs what happens:
 //       `[team_peer] event=ready|notified|acknowledged|status|stats ...`.
 //   team_peer inject --url U --channel P3AT_NOTIFY --hex BYTES
@@ -23,6 +25,7 @@
 #include <chrono>
 #include <csignal>
 #include <cctype>
+#include <optional>
 #include <cstdio>
 #include <sstream>
 #include <string>
@@ -70,6 +73,8 @@ struct RunOptions {
   std::string notify;
   std::string to;
   std::string phase = "running";
+  std::string verdict;  ///< empty: publish no gate verdict
+  std::string hash;
   double duration_s = 30.0;
   int publish_ms = 100;
 };
@@ -93,6 +98,16 @@ int run(const RunOptions& o) {
   std::printf("[team_peer] event=ready name=%s url=%s key=%s\n", o.name.c_str(), o.url.c_str(),
               p3at::hal::team_key_fingerprint(key.value()).c_str());
   std::fflush(stdout);
+
+  std::optional<p3at::hal::GateVerdict> verdict;
+  if (!o.verdict.empty()) {
+    const auto decision = p3at::hal::gate_decision_from_string(o.verdict);
+    if (!decision) {
+      std::fprintf(stderr, "team_peer: --verdict must be GO, NO-GO or OVERRIDE\n");
+      return 1;
+    }
+    verdict = p3at::hal::GateVerdict{o.name, o.hash, *decision, 0.99, 0.99, 0.99, 0.8, 60.0, 0.5, "team_peer"};
+  }
 
   p3at::hal::SteadyClock clock;
   const std::int64_t start_us = clock.now_us();
@@ -140,6 +155,11 @@ int run(const RunOptions& o) {
       t.cycles = cycles;
       (void)link.publish_telemetry(t);
       (void)link.publish_status({o.name, o.phase, "Waiting", "", 0.9});
+      if (verdict) {
+        if (auto st = link.publish_verdict(*verdict); !st) {
+          std::printf("[team_peer] event=error what=\"%s\"\n", st.error().message.c_str());
+        }
+      }
       next_publish_us = now + o.publish_ms * 1000;
     }
     const std::string stats = stats_line(link.stats());
@@ -213,6 +233,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--notify", o.notify, "Message to notify once at start");
   run_cmd->add_option("--to", o.to, "Recipients of --notify, comma-separated");
   run_cmd->add_option("--phase", o.phase, "Phase in the published status");
+  run_cmd->add_option("--verdict", o.verdict, "Publish a launch-gate verdict: GO, NO-GO or OVERRIDE");
+  run_cmd->add_option("--hash", o.hash, "The verdict's mission hash (64 lowercase hex digits)");
   run_cmd->add_option("--duration-s", o.duration_s, "Run time before exiting (SIGTERM stops earlier)");
   run_cmd->add_option("--publish-ms", o.publish_ms, "Telemetry and status period")->check(CLI::Range(1, 60000));
 

@@ -1,7 +1,8 @@
 // Hardware-in-the-loop: p3at_sim serving two robots, two separate mission_exec
 // processes talking over real LCM multicast (loopback, ttl=0) and real TCP,
-// completing the relay mission; a forged notification from a third process,
-// without the team key, is rejected and fires nothing.
+// passing the launch gate and completing the relay mission; a forged
+// notification from a third process, without the team key, is rejected and
+// fires nothing. (The gate's own paths: test_launch_gate_sitl.cpp.)
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -11,71 +12,29 @@
 
 #include "child_process.hpp"
 #include "sim_fixture.hpp"
+#include "team_fixture.hpp"
 
 using namespace p3at;
-
-namespace {
-
-const std::string kRelayMission = std::string(P3AT_SOURCE_DIR) + "/examples/relay/mission.yaml";
-const std::string kRelayWorld = std::string(P3AT_SOURCE_DIR) + "/examples/relay/world.yaml";
-
-std::string make_key(const std::string& stem) {
-  const std::string path = test::scratch_path(stem);
-  test::ChildProcess tool({P3AT_TEAM_KEY_BIN, path}, path + ".log");
-  REQUIRE(tool.wait_exit(10.0) == 0);
-  return path;
-}
-
-// Two consecutive free ports for robot1 and robot2.
-int free_port_pair() {
-  for (int attempt = 0; attempt < 50; ++attempt) {
-    const int p = test::free_tcp_port();
-    if (p >= 65535) continue;
-    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    addr.sin_port = htons(static_cast<std::uint16_t>(p + 1));
-    const bool free = ::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0;
-    ::close(fd);
-    if (free) return p;
-  }
-  FAIL("no free port pair");
-  return 0;
-}
-
-// The last truth row of `robot` in the simulator's CSV: true x, y.
-std::pair<double, double> final_truth(const std::string& csv, const std::string& robot) {
-  std::ifstream in(csv);
-  std::string line;
-  std::pair<double, double> xy{NAN, NAN};
-  while (std::getline(in, line)) {
-    double t = 0, x = 0, y = 0;
-    char name[64] = {};
-    if (std::sscanf(line.c_str(), "%lf,%63[^,],%lf,%lf", &t, name, &x, &y) == 4 && robot == name) xy = {x, y};
-  }
-  return xy;
-}
-
-}  // namespace
+using test::final_truth;
+using test::kRelayMission;
+using test::kRelayModels;
+using test::kRelayWorld;
 
 TEST_CASE("relay: two mission_exec processes over real LCM and TCP; a forged notification is rejected") {
-  const std::string key = make_key("team.key");
-  const std::string wrong_key = make_key("intruder.key");
-  const int port = free_port_pair();
-  const std::string lcm = "udpm://239.255.76.67:" + std::to_string(test::free_tcp_port()) + "?ttl=0";
+  const std::string key = test::make_key("team.key");
+  const std::string wrong_key = test::make_key("intruder.key");
+  const int port = test::free_port_pair();
+  const std::string lcm = test::fresh_lcm_url();
 
   test::SimProcess sim({"--world", kRelayWorld, "--speedup", "2"}, port);
   REQUIRE(sim.ready());
   REQUIRE(sim.process.wait_for_log("port=" + std::to_string(port + 1), 5.0));
 
   const auto exec_args = [&](const std::string& robot, int robot_port) {
-    return std::vector<std::string>{P3AT_MISSION_EXEC_BIN, "--robot", robot, "--mission", kRelayMission,
-                                    "--hal", "tcp://127.0.0.1:" + std::to_string(robot_port), "--lcm", lcm,
-                                    "--team-key", key, "--linger-s", "3"};
+    return test::exec_args(robot, robot_port, lcm, key, kRelayMission, {"--models", kRelayModels});
   };
   test::ChildProcess robot2(exec_args("robot2", port + 1), test::scratch_path("robot2.log"));
-  REQUIRE(robot2.wait_for_log("event=connected", 10.0));
+  REQUIRE(robot2.wait_for_log("event=gate-open", 10.0));
 
   // An intruder claiming to be robot1, signing with the wrong key.
   test::ChildProcess forger({P3AT_TEAM_PEER_BIN, "run", "--url", lcm, "--mission", "relay", "--name", "robot1",

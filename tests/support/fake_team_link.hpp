@@ -3,8 +3,10 @@
 // a perfect radio: notify() puts the notification in each recipient's inbox,
 // the recipient's next poll() delivers it and (with auto_ack) acknowledges it
 // to the sender at once; publish_status() updates every peer's
-// teammate_status(). A lone link is driven by the test: deliver(), ack(),
-// set_teammate_status(). Every call is recorded.
+// teammate_status(), publish_verdict() every peer's teammate_verdicts() and
+// publish_telemetry() every peer's teammate_telemetry(). A lone link is driven
+// by the test: deliver(), ack(), set_teammate_status(), set_teammate_verdict(),
+// set_teammate_telemetry(). Every call is recorded.
 
 #include <algorithm>
 #include <cstdint>
@@ -65,6 +67,9 @@ class FakeTeamLink final : public hal::TeamLink {
   }
   Status publish_telemetry(const hal::Telemetry& telemetry) override {
     telemetry_sent.push_back(telemetry);
+    hal::Telemetry stamped = telemetry;
+    stamped.robot = self_;
+    for (FakeTeamLink* peer : peers_) peer->set_teammate_telemetry(stamped);
     return {};
   }
   Status publish_status(const hal::TeamStatus& status) override {
@@ -73,6 +78,16 @@ class FakeTeamLink final : public hal::TeamLink {
     return {};
   }
   const std::vector<hal::TeamStatus>& teammate_status() const override { return teammates_; }
+  Status publish_verdict(const hal::GateVerdict& verdict) override {
+    if (fail_publish_verdict) return make_error(Error::Code::io, "fake team link: verdict refused by the test");
+    verdicts_sent.push_back(verdict);
+    hal::GateVerdict stamped = verdict;
+    stamped.robot = self_;
+    for (FakeTeamLink* peer : peers_) peer->set_teammate_verdict(stamped);
+    return {};
+  }
+  const std::vector<hal::GateVerdict>& teammate_verdicts() const override { return verdicts_; }
+  const std::vector<hal::Telemetry>& teammate_telemetry() const override { return telemetry_; }
   const hal::TeamLinkStats& stats() const override { return stats_; }
 
   // ---- test controls
@@ -91,25 +106,23 @@ class FakeTeamLink final : public hal::TeamLink {
     if (it != waiting_.end()) it->second.clear();
   }
   /// Replaces (or adds) a teammate's latest status.
-  void set_teammate_status(const hal::TeamStatus& status) {
-    const auto it = std::find_if(teammates_.begin(), teammates_.end(),
-                                 [&](const hal::TeamStatus& s) { return s.robot == status.robot; });
-    if (it == teammates_.end()) {
-      teammates_.push_back(status);
-    } else {
-      *it = status;
-    }
-  }
+  void set_teammate_status(const hal::TeamStatus& status) { replace_or_add(teammates_, status); }
+  /// Replaces (or adds) a teammate's latest gate verdict.
+  void set_teammate_verdict(const hal::GateVerdict& verdict) { replace_or_add(verdicts_, verdict); }
+  /// Replaces (or adds) a teammate's latest telemetry.
+  void set_teammate_telemetry(const hal::Telemetry& telemetry) { replace_or_add(telemetry_, telemetry); }
   const std::string& self() const { return self_; }
 
   bool auto_ack = true;
   bool fail_notify = false;
   bool poll_error = false;
+  bool fail_publish_verdict = false;
   int poll_calls = 0;
   std::int64_t last_poll_us = 0;
   std::vector<NotifyCall> notify_calls;
   std::vector<hal::Telemetry> telemetry_sent;
   std::vector<hal::TeamStatus> status_sent;
+  std::vector<hal::GateVerdict> verdicts_sent;
 
  private:
   struct Incoming {
@@ -117,11 +130,23 @@ class FakeTeamLink final : public hal::TeamLink {
     FakeTeamLink* from = nullptr;
   };
 
+  template <class Item>
+  static void replace_or_add(std::vector<Item>& held, const Item& item) {
+    const auto it = std::find_if(held.begin(), held.end(), [&](const Item& h) { return h.robot == item.robot; });
+    if (it == held.end()) {
+      held.push_back(item);
+    } else {
+      *it = item;
+    }
+  }
+
   std::string self_;
   std::vector<FakeTeamLink*> peers_;
   std::vector<Incoming> inbox_;
   std::map<std::uint64_t, std::vector<std::string>> waiting_;
   std::vector<hal::TeamStatus> teammates_;
+  std::vector<hal::GateVerdict> verdicts_;
+  std::vector<hal::Telemetry> telemetry_;
   std::uint64_t next_seq_ = 1;
   hal::TeamLinkStats stats_;
 };

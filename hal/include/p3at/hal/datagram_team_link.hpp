@@ -30,6 +30,9 @@ class DatagramTeamLink : public TeamLink {
   Status publish_telemetry(const Telemetry& telemetry) final;
   Status publish_status(const TeamStatus& status) final;
   const std::vector<TeamStatus>& teammate_status() const final { return protocol_.teammate_status(); }
+  Status publish_verdict(const GateVerdict& verdict) final;
+  const std::vector<GateVerdict>& teammate_verdicts() const final { return protocol_.teammate_verdicts(); }
+  const std::vector<Telemetry>& teammate_telemetry() const final { return protocol_.teammate_telemetry(); }
   const TeamLinkStats& stats() const final { return protocol_.stats(); }
 
   const TeamProtocol& protocol() const { return protocol_; }

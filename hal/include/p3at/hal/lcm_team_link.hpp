@@ -27,8 +27,8 @@ inline constexpr std::string_view kDefaultTeamLcmUrl = "udpm://239.255.76.67:766
 /// poll() is given hal::SteadyClock time.
 /// Errors name the URL: invalid config, unsupported scheme, or LCM unable to
 /// open it (e.g. no route for multicast). Never throws.
-/// The link subscribes to P3AT_NOTIFY and P3AT_STATUS and publishes on those
-/// and P3AT_TELEMETRY.
+/// The link subscribes to and publishes on P3AT_NOTIFY, P3AT_STATUS,
+/// P3AT_GATE and P3AT_TELEMETRY.
 Result<std::unique_ptr<TeamLink>> open_lcm_team_link(std::string_view lcm_url, TeamLinkConfig config,
                                                      const TeamKey& key);
 

@@ -74,6 +74,10 @@ class TeamProtocol {
   /// p_success is sent as -1 (unknown).
   Result<TeamDatagram> telemetry(const Telemetry& telemetry);
   Result<TeamDatagram> status(const TeamStatus& status);
+  /// This robot's gate verdict as a datagram; `robot` is set to self and an
+  /// over-long detail is cut. invalid_argument for a mission_hash that is not
+  /// 64 lowercase hex digits or a non-finite number.
+  Result<TeamDatagram> verdict(const GateVerdict& verdict);
 
   /// True once every recipient of our notification `seq` has acknowledged it
   /// (false for a sequence number this robot never issued).
@@ -81,6 +85,9 @@ class TeamProtocol {
 
   /// Latest authenticated status of each teammate heard from, in roster order.
   const std::vector<TeamStatus>& teammate_status() const { return teammate_status_; }
+  /// Latest authenticated gate verdict / telemetry of each teammate heard from, in roster order.
+  const std::vector<GateVerdict>& teammate_verdicts() const { return teammate_verdicts_; }
+  const std::vector<Telemetry>& teammate_telemetry() const { return teammate_telemetry_; }
   const TeamLinkStats& stats() const { return stats_; }
   const TeamLinkConfig& config() const { return config_; }
   /// Notifications still waiting for acknowledgements.
@@ -96,6 +103,8 @@ class TeamProtocol {
   struct Peer {
     ReplayWindow notifications;
     std::optional<std::uint64_t> last_status_seq;
+    std::optional<std::uint64_t> last_verdict_seq;
+    std::optional<std::uint64_t> last_telemetry_seq;
   };
 
   TeamProtocol(TeamLinkConfig config, const TeamKey& key);
@@ -106,6 +115,17 @@ class TeamProtocol {
   void receive_notification(std::span<const std::uint8_t> bytes, std::vector<TeamNotification>& delivered,
                             std::vector<TeamDatagram>& out);
   void receive_status(std::span<const std::uint8_t> bytes);
+  void receive_verdict(std::span<const std::uint8_t> bytes);
+  void receive_telemetry(std::span<const std::uint8_t> bytes);
+  /// The checks every best-effort message (status, verdict, telemetry) passes
+  /// before it is kept: not our own, our mission, a roster name, a good tag, a
+  /// sequence number newer than the last one kept from that robot (which it
+  /// then records). Each failure is counted; true when the message is kept.
+  bool admit(const std::string& robot, const std::string& mission_id, bool tag_ok, std::uint64_t seq,
+             std::optional<std::uint64_t> Peer::*last_seq);
+  /// Replaces `robot`'s entry in `held` or inserts it in roster order.
+  template <class Item>
+  void hold(std::vector<Item>& held, const std::string& robot, const Item& item);
   void handle_ack(const NotificationWire& ack);
   void send_ack(const NotificationWire& notification, std::vector<TeamDatagram>& out);
   void transmit(const Pending& pending, std::vector<TeamDatagram>& out);
@@ -115,10 +135,13 @@ class TeamProtocol {
   std::uint64_t next_notify_seq_;
   std::uint64_t next_status_seq_;
   std::uint64_t next_telemetry_seq_;
+  std::uint64_t next_verdict_seq_;
   std::optional<std::int64_t> now_us_;  ///< latest time seen; none before the first receive()/tick()
   std::vector<Pending> pending_;        ///< in sequence order
   std::map<std::string, Peer> peers_;
   std::vector<TeamStatus> teammate_status_;
+  std::vector<GateVerdict> teammate_verdicts_;
+  std::vector<Telemetry> teammate_telemetry_;
   TeamLinkStats stats_;
 };
 

@@ -1,0 +1,75 @@
+// vipars gate MISSION [--models FILE] [--tmax S] [--rmax M] [--threshold P] [--criterion FILE]...
+// The launch gate's pre-launch check on the operator's station: the very
+// check every robot's mission_exec makes before moving (the launch gate
+// library's pre_launch_check(), docs/launch-gate.md), printed as GO / NO-GO
+// with the probabilities, the failed criteria, the mission's content hash
+// (the robots must report the same one) and the decision time.
+
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "p3at/launch_gate/check_report.hpp"
+#include "p3at/launch_gate/pre_launch_check.hpp"
+
+namespace p3at::vipars {
+namespace {
+
+struct GateFlags {
+  std::string mission_file;
+  std::optional<std::string> models_file;
+  std::optional<double> tmax_s, rmax_m, threshold;
+  std::vector<std::string> criteria;
+};
+
+int run_gate(const GateFlags& f) {
+  gate::CheckRequest request;
+  request.mission_path = f.mission_file;
+  request.models_path = f.models_file;
+  request.options.tmax_s = f.tmax_s;
+  request.options.rmax_m = f.rmax_m;
+  request.options.threshold = f.threshold;
+  request.criteria_files = f.criteria;
+  const gate::CheckReport report = gate::pre_launch_check(request, gate::verifier_source());
+  switch (report.status) {
+    case gate::CheckStatus::go:
+    case gate::CheckStatus::no_go:
+      std::fputs(gate::format_check(report).c_str(), stdout);
+      return report.status == gate::CheckStatus::go ? kExitOk : kExitNoGo;
+    case gate::CheckStatus::bad_input:
+    case gate::CheckStatus::no_models:
+      std::fprintf(stderr, "vipars gate: %s\n", report.error.c_str());
+      return kExitBadInput;
+    case gate::CheckStatus::cannot_run:
+      std::fputs(gate::format_check(report).c_str(), stdout);
+      return kExitFailed;
+  }
+  return kExitFailed;
+}
+
+}  // namespace
+
+void register_gate(CLI::App& app, int& exit_status) {
+  auto flags = std::make_shared<GateFlags>();
+  CLI::App* sub = app.add_subcommand(
+      "gate",
+      "The launch gate's check, before anything is deployed: the same verification every robot makes before it "
+      "moves (docs/launch-gate.md), as a clear GO / NO-GO with the probabilities and the mission's content hash. "
+      "Exit 0 = GO, 1 = NO-GO, 2 = bad input (unreadable mission, models or flags; no models file), "
+      "3 = the verifier cannot evaluate the mission with these models.");
+  sub->add_option("mission", flags->mission_file, "mission file (YAML, docs/mission-format.md)")->required();
+  sub->add_option("--models", flags->models_file,
+                  "robot models file (docs/verifier.md); default: models.yaml beside the mission file, as on the "
+                  "robots");
+  sub->add_option("--tmax", flags->tmax_s, "override the mission's Tmax (seconds)")->check(CLI::PositiveNumber);
+  sub->add_option("--rmax", flags->rmax_m, "override the mission's Rmax (metres)")->check(CLI::PositiveNumber);
+  sub->add_option("--threshold", flags->threshold, "override the mission's launch threshold P")
+      ->check(CLI::Range(0.0, 1.0));
+  sub->add_option("--criterion", flags->criteria, "extra criterion file (PARS, docs/verifier.md); repeatable");
+  sub->callback([flags, &exit_status] { exit_status = run_gate(*flags); });
+}
+
+}  // namespace p3at::vipars

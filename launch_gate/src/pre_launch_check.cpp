@@ -1,0 +1,135 @@
+#include "p3at/launch_gate/pre_launch_check.hpp"
+
+#include <time.h>
+
+#include <chrono>
+#include <exception>
+#include <filesystem>
+
+#include "p3at/launch_gate/mission_hash.hpp"
+#include "p3at/protocols/mission/loader.hpp"
+
+namespace p3at::gate {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// CPU time of the calling thread, in milliseconds.
+double thread_cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) / 1e6;
+}
+
+std::string join(const std::vector<std::string>& lines, const char* separator) {
+  std::string out;
+  for (const std::string& line : lines) out += (out.empty() ? "" : separator) + line;
+  return out;
+}
+
+}  // namespace
+
+VerdictSource verifier_source() {
+  return [](const mission::Mission& mission, const verifier::Models& models, const verifier::VerifyOptions& options,
+            const std::vector<std::string>& criteria_files, const verifier::TeamSnapshot* from) {
+    return verifier::verify(mission, models, options, criteria_files, from);
+  };
+}
+
+const char* to_string(CheckStatus status) {
+  switch (status) {
+    case CheckStatus::go: return "GO";
+    case CheckStatus::no_go: return "NO-GO";
+    case CheckStatus::bad_input: return "bad-input";
+    case CheckStatus::no_models: return "no-models";
+    case CheckStatus::cannot_run: return "cannot-run";
+  }
+  return "?";
+}
+
+std::string default_models_path(const std::string& mission_path) {
+  const std::filesystem::path folder = std::filesystem::path(mission_path).parent_path();
+  return (folder / "models.yaml").string();
+}
+
+CheckReport pre_launch_check(const CheckRequest& request, const VerdictSource& source) {
+  const auto start = std::chrono::steady_clock::now();
+  const double start_cpu_ms = thread_cpu_ms();
+  CheckReport report;
+  report.mission_path = request.mission_path;
+  report.models_path = request.models_path.value_or(default_models_path(request.mission_path));
+  auto fail = [&](CheckStatus status, std::string error) {
+    report.status = status;
+    report.error = std::move(error);
+    report.total_ms = ms_since(start);
+    report.total_cpu_ms = thread_cpu_ms() - start_cpu_ms;
+    return report;
+  };
+
+  // The bytes that are hashed are the bytes that are parsed: no file can
+  // change between the two.
+  const Result<std::string> mission_bytes = read_file_bytes(request.mission_path);
+  if (!mission_bytes) return fail(CheckStatus::bad_input, mission_bytes.error().message);
+  try {
+    report.mission = mission::parse_mission(*mission_bytes, request.mission_path);
+  } catch (const std::exception& e) {
+    return fail(CheckStatus::bad_input, e.what());
+  }
+
+  const Result<std::string> models_bytes = read_file_bytes(report.models_path);
+  if (!models_bytes) {
+    if (models_bytes.error().code != Error::Code::not_found) return fail(CheckStatus::bad_input, models_bytes.error().message);
+    return fail(CheckStatus::no_models,
+                "no robot models: " + report.models_path + " does not exist" +
+                    (request.models_path ? "" : " (the default: models.yaml beside the mission; pass --models FILE)") +
+                    "; without models the launch gate cannot verify the mission");
+  }
+  try {
+    const std::string base_dir = std::filesystem::path(report.models_path).parent_path().string();
+    report.models = verifier::parse_models(*models_bytes, report.models_path, base_dir);
+  } catch (const std::exception& e) {
+    return fail(CheckStatus::bad_input, e.what());
+  }
+  report.mission_hash = mission_content_hash(*mission_bytes, *models_bytes, report.models->environment.walls);
+
+  const auto verify_start = std::chrono::steady_clock::now();
+  Result<verifier::VerifyResult> verdict =
+      source(*report.mission, *report.models, request.options, request.criteria_files, nullptr);
+  report.verify_ms = ms_since(verify_start);
+  if (!verdict) {
+    // A criteria file that does not parse is the operator's input; anything
+    // else means these models cannot evaluate this mission.
+    const bool bad_input = verdict.error().code == Error::Code::invalid_argument;
+    return fail(bad_input ? CheckStatus::bad_input : CheckStatus::cannot_run, verdict.error().message);
+  }
+  report.result = std::move(verdict.value());
+  report.status = report.result.go ? CheckStatus::go : CheckStatus::no_go;
+  report.total_ms = ms_since(start);
+  report.total_cpu_ms = thread_cpu_ms() - start_cpu_ms;
+  return report;
+}
+
+hal::GateVerdict make_verdict(const CheckReport& report, bool override_gate) {
+  const verifier::VerifyResult& r = report.result;
+  hal::GateVerdict v;
+  v.mission_hash = report.mission_hash;
+  v.p_time = r.p_time;
+  v.p_radius = r.p_radius;
+  v.p_joint = r.p_joint;
+  v.threshold = r.threshold;
+  v.tmax_s = r.tmax_s;
+  v.rmax_m = r.rmax_m;
+  if (override_gate) {
+    v.decision = hal::GateDecision::override_go;
+    v.detail = std::string("operator override; the verifier said ") + (r.go ? "GO" : "NO-GO");
+    if (!r.failed.empty()) v.detail += ": " + join(r.failed, "; ");
+  } else {
+    v.decision = r.go ? hal::GateDecision::go : hal::GateDecision::no_go;
+    v.detail = join(r.failed, "; ");
+  }
+  return v;
+}
+
+}  // namespace p3at::gate

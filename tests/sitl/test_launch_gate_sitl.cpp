@@ -1,0 +1,210 @@
+// Hardware-in-the-loop tests of the launch gate (docs/launch-gate.md): p3at_sim
+// serving two robots, mission_exec processes over real LCM multicast (loopback,
+// ttl=0) and real TCP. GO: the team agrees, launches, completes the relay and
+// re-verifies on the way. Every refusal: no robot moves, confirmed by the
+// simulator's own count of motion commands received — a NO-GO (one robot's
+// verdict), a mismatched mission hash, a silent teammate, and a forged GO from
+// a process without the team key (rejected and counted). And the operator's
+// override, logged and published as OVERRIDE.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "child_process.hpp"
+#include "p3at/launch_gate/mission_hash.hpp"
+#include "sim_fixture.hpp"
+#include "team_fixture.hpp"
+
+using namespace p3at;
+using test::contains;
+using test::kRelayMission;
+using test::kRelayModels;
+using test::kRelayWorld;
+
+namespace {
+
+constexpr int kExitGateNoGo = 4;
+constexpr int kExitGateMismatch = 5;
+constexpr int kExitGateSilent = 6;
+
+std::size_t occurrences(const std::string& text, const std::string& needle) {
+  std::size_t n = 0;
+  for (auto pos = text.find(needle); pos != std::string::npos; pos = text.find(needle, pos + needle.size())) ++n;
+  return n;
+}
+
+/// p3at_sim with the relay world on two fresh ports, a team key and an LCM URL.
+struct Bench {
+  std::string key = test::make_key("team.key");
+  int port = test::free_port_pair();
+  std::string lcm = test::fresh_lcm_url();
+  test::SimProcess sim{{"--world", kRelayWorld, "--speedup", "4"}, port};
+
+  Bench() {
+    REQUIRE(sim.ready());
+    REQUIRE(sim.process.wait_for_log("port=" + std::to_string(port + 1), 5.0));
+  }
+  std::vector<std::string> args(const std::string& robot, std::vector<std::string> extra = {},
+                                const std::string& mission = kRelayMission) const {
+    extra.insert(extra.begin(), {"--models", kRelayModels});
+    return test::exec_args(robot, robot == "robot1" ? port : port + 1, lcm, key, mission, extra);
+  }
+  /// Stops the simulator and checks, from its truth CSV and its final stats,
+  /// that neither robot ever received a motion command.
+  void check_no_motion() {
+    CHECK(test::motion_commands(sim.truth_path, "robot1") == 0);
+    CHECK(test::motion_commands(sim.truth_path, "robot2") == 0);
+    sim.process.signal(SIGTERM);
+    CHECK(sim.process.wait_exit(10.0) == 0);
+    const std::string log = sim.process.log();
+    INFO("simulator log:\n" << log);
+    // One stats line per robot at exit, each with its count of motion commands.
+    CHECK(occurrences(log, "[p3at_sim] stats robot=") == 2);
+    CHECK(occurrences(log, " motion_commands=0 ") == 2);
+  }
+};
+
+std::string relay_hash() {
+  return gate::mission_content_hash(gate::read_file_bytes(kRelayMission).value(),
+                                    gate::read_file_bytes(kRelayModels).value(), {});
+}
+
+}  // namespace
+
+TEST_CASE("GO: both robots verify the same hash, launch together, complete the relay and re-verify on the way") {
+  Bench bench;
+  test::ChildProcess robot2(bench.args("robot2"), test::scratch_path("robot2.log"));
+  REQUIRE(robot2.wait_for_log("event=gate-open", 15.0));
+  test::ChildProcess robot1(bench.args("robot1"), test::scratch_path("robot1.log"));
+  CHECK(robot1.wait_exit(90.0) == 0);
+  CHECK(robot2.wait_exit(90.0) == 0);
+  const std::string log1 = robot1.log();
+  const std::string log2 = robot2.log();
+  INFO("robot1 log:\n" << log1);
+  INFO("robot2 log:\n" << log2);
+  const std::string hash = relay_hash();
+  for (const std::string* log : {&log1, &log2}) {
+    CHECK(contains(*log, "event=gate-check"));
+    CHECK(contains(*log, "decision=GO p_time="));
+    CHECK(contains(*log, "hash=" + hash));
+    CHECK(contains(*log, "state=launch"));
+    CHECK(contains(*log, "event=verdict-heard"));
+    CHECK(contains(*log, "event=reverify "));  // at least one transition each, re-verified
+  }
+  CHECK(contains(log1, "every robot agrees: robot1:GO,robot2:GO"));
+  CHECK(contains(log2, "every robot agrees: robot2:GO,robot1:GO"));
+  CHECK(contains(log1, "event=finished robot=robot1 outcome=finished"));
+  CHECK(contains(log2, "event=finished robot=robot2 outcome=finished"));
+  CHECK(contains(log2, "cause=Notified"));
+  CHECK_FALSE(contains(log1, "verdicts_accepted=0 "));
+  // The robots really are near their goals (simulator ground truth), and moved.
+  const auto [x1, y1] = test::final_truth(bench.sim.truth_path, "robot1");
+  const auto [x2, y2] = test::final_truth(bench.sim.truth_path, "robot2");
+  CHECK(std::hypot(x1 - 3.0, y1 - 1.0) < 0.6);
+  CHECK(std::hypot(x2 - 3.0, y2 - 3.0) < 0.6);
+  CHECK(test::motion_commands(bench.sim.truth_path, "robot1") > 10);
+}
+
+TEST_CASE("NO-GO: one robot's Tmax is too tight; neither robot moves, the simulator confirms it") {
+  Bench bench;
+  // robot2 alone finds the mission cannot meet a 5 s Tmax; robot1 verifies GO.
+  test::ChildProcess robot1(bench.args("robot1"), test::scratch_path("robot1.log"));
+  REQUIRE(robot1.wait_for_log("event=gate-open", 15.0));
+  test::ChildProcess robot2(bench.args("robot2", {"--tmax", "5"}), test::scratch_path("robot2.log"));
+  CHECK(robot2.wait_exit(30.0) == kExitGateNoGo);
+  CHECK(robot1.wait_exit(30.0) == kExitGateNoGo);
+  const std::string log1 = robot1.log();
+  const std::string log2 = robot2.log();
+  INFO("robot1 log:\n" << log1);
+  INFO("robot2 log:\n" << log2);
+  // The refusal prints the probability, the threshold and the failed criterion.
+  CHECK(contains(log2, "NO-GO  mission relay"));
+  CHECK(contains(log2, "P(done by Tmax = 5.0 s)"));
+  CHECK(contains(log2, "< threshold 0.8000"));
+  CHECK(contains(log2, "failed: P(t <= 5.0 s"));
+  CHECK(contains(log2, "event=gate-refused robot=robot2 why=no-go"));
+  CHECK(contains(log1, "event=gate-refused robot=robot1 why=no-go"));
+  CHECK(contains(log1, "teammate robot2 says NO-GO"));
+  // A robot whose own verdict is NO-GO never even connects to its base.
+  CHECK_FALSE(contains(bench.sim.process.log(), "connect robot=robot2"));
+  bench.check_no_motion();
+}
+
+TEST_CASE("mismatched hash: robot2 was given a different mission file; neither robot moves") {
+  Bench bench;
+  // The same mission with one more comment line: the same FSA, a different file.
+  const std::string other = test::scratch_path("relay-edited.yaml");
+  {
+    std::ofstream out(other, std::ios::binary);
+    out << gate::read_file_bytes(kRelayMission).value() << "# edited on robot2 only\n";
+  }
+  test::ChildProcess robot1(bench.args("robot1"), test::scratch_path("robot1.log"));
+  REQUIRE(robot1.wait_for_log("event=gate-open", 15.0));
+  test::ChildProcess robot2(bench.args("robot2", {}, other), test::scratch_path("robot2.log"));
+  CHECK(robot1.wait_exit(30.0) == kExitGateMismatch);
+  CHECK(robot2.wait_exit(30.0) == kExitGateMismatch);
+  const std::string log1 = robot1.log();
+  INFO("robot1 log:\n" << log1);
+  INFO("robot2 log:\n" << robot2.log());
+  CHECK(contains(log1, "event=gate-refused robot=robot1 why=mismatch"));
+  CHECK(contains(log1, "teammate robot2 verified a different mission or models"));
+  CHECK(contains(robot2.log(), "why=mismatch"));
+  bench.check_no_motion();
+  std::filesystem::remove(other);
+}
+
+TEST_CASE("silent teammate: only robot1 runs; after --gate-timeout it refuses, and never moved") {
+  Bench bench;
+  test::ChildProcess robot1(bench.args("robot1", {"--gate-timeout", "3"}), test::scratch_path("robot1.log"));
+  CHECK(robot1.wait_exit(30.0) == kExitGateSilent);
+  const std::string log1 = robot1.log();
+  INFO("robot1 log:\n" << log1);
+  CHECK(contains(log1, "event=gate-refused robot=robot1 why=silent"));
+  CHECK(contains(log1, "no verdict from robot2 within 3.0 s"));
+  CHECK(contains(bench.sim.process.log(), "connect robot=robot1"));  // it was ready, connected, and held still
+  bench.check_no_motion();
+}
+
+TEST_CASE("a forged GO from a process without the team key is rejected and counted; no launch") {
+  Bench bench;
+  const std::string wrong_key = test::make_key("intruder.key");
+  test::ChildProcess robot1(bench.args("robot1", {"--gate-timeout", "4"}), test::scratch_path("robot1.log"));
+  REQUIRE(robot1.wait_for_log("event=gate-open", 15.0));
+  // The intruder claims to be robot2 and says GO for the very mission hash robot1 verified.
+  test::ChildProcess forger({P3AT_TEAM_PEER_BIN, "run", "--url", bench.lcm, "--mission", "relay", "--name", "robot2",
+                             "--roster", "robot1,robot2", "--key", wrong_key, "--verdict", "GO", "--hash",
+                             relay_hash(), "--duration-s", "3", "--publish-ms", "100"},
+                            test::scratch_path("forger.log"));
+  CHECK(forger.wait_exit(15.0) == 0);
+  CHECK(robot1.wait_exit(30.0) == kExitGateSilent);
+  const std::string log1 = robot1.log();
+  INFO("robot1 log:\n" << log1);
+  INFO("forger log:\n" << forger.log());
+  CHECK(contains(log1, "why=silent"));
+  CHECK_FALSE(contains(log1, "event=verdict-heard"));
+  CHECK(contains(log1, "verdicts_accepted=0 "));
+  CHECK(contains(log1, "rejected_bad_tag="));
+  CHECK_FALSE(contains(log1, "rejected_bad_tag=0 "));
+  bench.check_no_motion();
+}
+
+TEST_CASE("operator override: both robots told --override-gate launch a NO-GO mission, logged and published as OVERRIDE") {
+  Bench bench;
+  const std::vector<std::string> extra{"--tmax", "5", "--override-gate"};
+  test::ChildProcess robot2(bench.args("robot2", extra), test::scratch_path("robot2.log"));
+  REQUIRE(robot2.wait_for_log("event=gate-open", 15.0));
+  test::ChildProcess robot1(bench.args("robot1", extra), test::scratch_path("robot1.log"));
+  CHECK(robot1.wait_exit(90.0) == 0);
+  CHECK(robot2.wait_exit(90.0) == 0);
+  const std::string log1 = robot1.log();
+  const std::string log2 = robot2.log();
+  INFO("robot1 log:\n" << log1);
+  INFO("robot2 log:\n" << log2);
+  CHECK(contains(log1, "event=gate-override robot=robot1 verifier_decision=NO-GO"));
+  CHECK(contains(log2, "event=gate-override robot=robot2 verifier_decision=NO-GO"));
+  CHECK(contains(log1, "event=verdict-heard robot=robot2 decision=OVERRIDE"));
+  CHECK(contains(log1, "every robot agrees: robot1:OVERRIDE,robot2:OVERRIDE"));
+  CHECK(contains(log2, "event=finished robot=robot2 outcome=finished"));
+}
