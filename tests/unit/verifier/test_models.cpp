@@ -256,8 +256,12 @@ TEST_SUITE("walls_from") {
     const std::string text = std::string(kMinimal) + "environment:\n  walls_from: world_under_test.yaml\n";
     const std::string world = (dir / "world_under_test.yaml").string();
 
-    write_file(world, "seed: 1\nrobots: []\n");
-    CHECK(error_of(text, dir.string()) == world + ":1:1: missing top-level key 'walls' (walls_from reads only that list)");
+    write_file(world, "seed: 1\nrobots: []\n");  // a world without walls: an open floor, as in the simulator
+    CHECK(p3at::verifier::parse_models(text, "m.yaml", dir.string()).environment.walls.empty());
+    write_file(world, "seed: 1\nmission: {}\n");  // not a world file
+    CHECK(error_of(text, dir.string()) == world +
+                                              ":1:1: missing top-level key 'walls' (walls_from reads only that list; a "
+                                              "world file without walls still has 'robots')");
     write_file(world, "seed: 1\nwalls:\n  - [0, 0, 1]\n");
     CHECK(error_of(text, dir.string()) ==
           world + ":3:5: expected a wall [x0, y0, x1, y1] (4 numbers, metres) for 'walls[0]', got a list of 3");

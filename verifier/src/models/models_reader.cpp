@@ -190,8 +190,11 @@ void read_walls_from(const Map& env, const std::string& base_dir, std::vector<Wa
       world.fail(root.Mark(), "expected a mapping at the top level (walls_from reads its 'walls' list), got " +
                                   models_detail::describe(root));
     }
+    bool has_robots = false;
     for (auto it = root.begin(); it != root.end(); ++it) {
-      if (!it->first.IsScalar() || it->first.Scalar() != "walls") continue;
+      if (!it->first.IsScalar()) continue;
+      if (it->first.Scalar() == "robots") has_robots = true;
+      if (it->first.Scalar() != "walls") continue;
       if (!it->second.IsSequence()) {
         world.fail(it->second.IsNull() ? it->first.Mark() : it->second.Mark(),
                    "expected a list for 'walls', got " + models_detail::describe(it->second));
@@ -199,7 +202,11 @@ void read_walls_from(const Map& env, const std::string& base_dir, std::vector<Wa
       read_walls(world, it->second, "walls", walls);
       return;
     }
-    world.fail(root.Mark(), "missing top-level key 'walls' (walls_from reads only that list)");
+    // A simulator world without walls is an open floor (docs/simulator.md);
+    // a file with neither key is not a world file at all.
+    if (has_robots) return;
+    world.fail(root.Mark(), "missing top-level key 'walls' (walls_from reads only that list; a world file "
+                            "without walls still has 'robots')");
   } catch (const YAML::Exception& e) {
     world.fail(e.mark, "malformed YAML: " + e.msg);
   }
