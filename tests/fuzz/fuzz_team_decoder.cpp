@@ -5,7 +5,8 @@
 //   - a notification decoded with a valid tag re-encodes to exactly the input
 //     (the encoding is canonical, so there is one authentic form per message);
 //   - decoding what we encode gives back the same fields with a valid tag.
-// Seeds: tests/fuzz/corpus/team (valid messages under the key below).
+// Seeds: tests/fuzz/corpus/team (valid messages under the key below; the
+// verdict seeds are encode_verdict() of a GO and a NO-GO from alpha).
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -29,8 +30,8 @@ void check(bool ok) {
 }
 
 std::uint64_t total(const TeamLinkStats& s) {
-  return s.accepted + s.rejected_unknown_sender + s.rejected_bad_tag + s.rejected_replay + s.rejected_other_mission +
-         s.malformed;
+  return s.accepted + s.verdicts_accepted + s.telemetry_accepted + s.rejected_unknown_sender + s.rejected_bad_tag +
+         s.rejected_replay + s.rejected_other_mission + s.malformed;
 }
 
 }  // namespace
@@ -38,7 +39,7 @@ std::uint64_t total(const TeamLinkStats& s) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
   static const TeamKey key = fuzz_key();
-  const auto channel = static_cast<TeamChannel>(data[0] % 3);
+  const auto channel = static_cast<TeamChannel>(data[0] % 4);
   const std::span<const std::uint8_t> payload(data + 1, size - 1);
 
   switch (channel) {
@@ -72,6 +73,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
       break;
     }
+    case TeamChannel::gate: {
+      auto d = decode_verdict(payload, key);
+      if (d.ok()) {
+        auto again = encode_verdict(d->wire, key);
+        check(again.ok());
+        if (d->tag_ok) check(again.value() == std::vector<std::uint8_t>(payload.begin(), payload.end()));
+        auto round = decode_verdict(again.value(), key);
+        check(round.ok() && round->tag_ok && round->wire.seq == d->wire.seq &&
+              round->wire.verdict.robot == d->wire.verdict.robot &&
+              round->wire.verdict.mission_hash == d->wire.verdict.mission_hash &&
+              round->wire.verdict.decision == d->wire.verdict.decision);
+      }
+      break;
+    }
   }
 
   // The protocol end to end: bravo of team {alpha, bravo, charlie}.
@@ -92,5 +107,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // The same bytes twice can be accepted at most once.
   check(delivered.size() <= 1);
   check(protocol->stats().accepted <= 1);
+  check(protocol->stats().verdicts_accepted <= 1);
+  check(protocol->stats().telemetry_accepted <= 1);
   return 0;
 }
