@@ -63,7 +63,7 @@ Mixture1 remaining_after(const Mixture1& x, const Mixture1& y, std::size_t k) {
     Mixture1 left = x;
     for (Component1& c : left.components) {
       c.mean -= y_mean;
-      c.var += y_var;
+      c.var = std::max(c.var - y_var, 0.0);
     }
     return left;
   }
@@ -266,6 +266,15 @@ class Sequencer {
     std::vector<Segment> all = walls_;
     for (std::size_t j = 0; j < b.robots.size(); ++j) {
       if (j == i) continue;
+      // A teammate driving a GoToGuarded leg is not where its leg began for
+      // long: pinning its body there would block a robot headed for the spot
+      // it just left (a hand-over at a waypoint) for the whole state. Only
+      // teammates that hold still (Stop, Notify, Spin, finished) are obstacles;
+      // two moving robots passing each other is the approximation left.
+      if (!b.robots[j].final &&
+          std::holds_alternative<mission::GoToGuardedParams>(mission_.robots[j].states[b.robots[j].state].behavior)) {
+        continue;
+      }
       const Eigen::Vector2d p = b.robots[j].true_mean();
       const auto body = body_segments(p.x(), p.y(), b.robots[j].base.theta_rad + b.robots[j].error.mean(2));
       all.insert(all.end(), body.begin(), body.end());

@@ -71,7 +71,6 @@ PathResult run_path(const StateContext& ctx, std::size_t state, const BaseState&
   const auto* spin = std::get_if<mission::SpinParams>(&behavior);
   const std::size_t sample_every = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(1.0 / k.cycle_s)));
   const double max_range = ctx.models->environment.sonar_max_range_m;
-  const std::int64_t persistence = go ? std::max<std::int64_t>(1, go->noise_persistence_cycles) : 1;
   // How far from the robot's (true) centre an obstacle can still push it:
   // contact distance plus the sphere of influence, plus the sonar ring's
   // offset from the centre (a reading is the distance from the transducer),
@@ -111,11 +110,13 @@ PathResult run_path(const StateContext& ctx, std::size_t state, const BaseState&
         const auto ranges = sonar_ranges(ctx.obstacles, tx, ty, tth, max_range);
         obstacles = exec::sonar_obstacles(std::span<const double, exec::kP3atSonarCount>(ranges), pose, max_range);
       }
-      // NOISE redraws every `persistence` cycles; later draws are turned by the
-      // golden angle so one quadrature point covers differing directions.
-      const double draw = static_cast<double>(static_cast<std::int64_t>(n) / persistence);
-      const double angle = noise_angle_rad + draw * 2.399963229728653;
-      const exec::Vec2<double> noise{std::cos(angle), std::sin(angle)};
+      // One NOISE direction per path, held for the whole state: the paths
+      // are the quadrature of one draw. NOISE's redraws every `persistence`
+      // cycles are accounted for once, by redraw_shrink() on the durations;
+      // turning the direction within a path as well would average them twice
+      // (a 16 m leg redrawn every 15 s then spread a third as much as the
+      // simulator's).
+      const exec::Vec2<double> noise{std::cos(noise_angle_rad), std::sin(noise_angle_rad)};
       const exec::Velocity<double> v = exec::go_to_guarded(*go, pose, obstacles.view(), noise, config);
       trans = v.trans_mps;
       rot = v.rot_radps;
