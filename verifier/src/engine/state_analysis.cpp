@@ -61,8 +61,12 @@ struct PathResult {
   std::vector<PathSample> samples;
 };
 
+/// One path of the NOISE quadrature. `redraw_turn_rad` = 0: the direction is
+/// held for the whole state; otherwise each redraw (every `persistence`
+/// cycles) turns it by that angle, so the path passes through differing
+/// directions as the real NOISE's redraws do.
 PathResult run_path(const StateContext& ctx, std::size_t state, const BaseState& start, const ErrorState& error_start,
-                    double noise_angle_rad, std::size_t cap) {
+                    double noise_angle_rad, std::size_t cap, double redraw_turn_rad = 0.0) {
   const mission::RobotSpec& robot = *ctx.robot;
   const Kinematics& k = ctx.model->kinematics;
   const exec::BehaviorConfig config = behavior_config(robot, k);
@@ -110,13 +114,12 @@ PathResult run_path(const StateContext& ctx, std::size_t state, const BaseState&
         const auto ranges = sonar_ranges(ctx.obstacles, tx, ty, tth, max_range);
         obstacles = exec::sonar_obstacles(std::span<const double, exec::kP3atSonarCount>(ranges), pose, max_range);
       }
-      // One NOISE direction per path, held for the whole state: the paths
-      // are the quadrature of one draw. NOISE's redraws every `persistence`
-      // cycles are accounted for once, by redraw_shrink() on the durations;
-      // turning the direction within a path as well would average them twice
-      // (a 16 m leg redrawn every 15 s then spread a third as much as the
-      // simulator's).
-      const exec::Vec2<double> noise{std::cos(noise_angle_rad), std::sin(noise_angle_rad)};
+      // The quadrature's direction for this path (see analyze_motion for
+      // how held and redrawn paths are combined).
+      const double draw =
+          go->noise_persistence_cycles > 0 ? static_cast<double>(static_cast<std::int64_t>(n) / go->noise_persistence_cycles) : 0.0;
+      const double angle = noise_angle_rad + draw * redraw_turn_rad;
+      const exec::Vec2<double> noise{std::cos(angle), std::sin(angle)};
       const exec::Velocity<double> v = exec::go_to_guarded(*go, pose, obstacles.view(), noise, config);
       trans = v.trans_mps;
       rot = v.rot_radps;
@@ -251,8 +254,30 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
     }
   }
 
-  // Durations per exit, deviations shrunk for NOISE's redraws within the state.
+  // Durations per exit. The held paths above are the quadrature of one
+  // NOISE draw; when NOISE redraws within the state, independent draws over
+  // segments L_i spread the duration by sqrt(sum L_i^2) / sum L_i of one held
+  // draw's spread (redraw_shrink), and the mean comes from paths whose
+  // direction turns at each redraw (golden angle), since a redraw's new
+  // transient lengthens the path in a way one held direction does not.
+  // Turning the direction within the held paths as well would average the
+  // redraws twice (on a 16 m leg redrawn every 30 s the spread came out a
+  // third of the simulator's).
   const std::int64_t persistence = go ? go->noise_persistence_cycles : 0;
+  std::vector<PathResult> redrawn;
+  const bool redraws = noisy && persistence > 0 &&
+                       std::any_of(paths.begin(), paths.end(), [&](const PathResult& p) {
+                         return p.cycles > static_cast<std::size_t>(persistence);
+                       });
+  if (redraws) {
+    constexpr double kGoldenAngleRad = 2.399963229728653;
+    redrawn.reserve(points);
+    for (std::size_t j = 0; j < points; ++j) {
+      const double angle = 2.0 * kPi * (static_cast<double>(j) + 0.5) / static_cast<double>(points);
+      redrawn.push_back(run_path(ctx, state, start, error_start, angle, cap, kGoldenAngleRad));
+      a.cycles_simulated += redrawn.back().cycles;
+    }
+  }
   for (const std::size_t t : robot.states[state].outgoing) {
     std::vector<double> values, ws;
     double mean = 0.0, mass = 0.0;
@@ -264,11 +289,22 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
     }
     if (mass <= 0.0) continue;
     mean /= mass;
+    double centre = mean;  // where the durations are centred: the redrawn paths' mean when NOISE redraws
+    if (redraws) {
+      double m = 0.0, q = 0.0;
+      for (const PathResult& p : redrawn) {
+        if (p.exit && *p.exit == t) {
+          m += w * static_cast<double>(p.cycles);
+          q += w;
+        }
+      }
+      if (q > 0.0) centre = m / q;
+    }
     for (const PathResult& p : paths) {
       if (!p.exit || *p.exit != t) continue;
       const double shrink = redraw_shrink(p.cycles, persistence);
       // Whole cycles: the executive checks triggers once per cycle.
-      values.push_back((mean + shrink * (static_cast<double>(p.cycles) - mean)) * cycle_s);
+      values.push_back((centre + shrink * (static_cast<double>(p.cycles) - mean)) * cycle_s);
       ws.push_back(w);
     }
     a.exits.push_back({t, mass, from_weighted_points(values, ws, ctx.models->budget.max_components)});
