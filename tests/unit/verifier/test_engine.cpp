@@ -245,3 +245,31 @@ TEST_CASE("re-verification from a snapshot: at launch it agrees with verify; lat
   bad.robots[1].state = 99;
   CHECK_FALSE(verify(m, models, VerifyOptions{}, {}, &bad));
 }
+
+TEST_CASE("noisy GoToGuarded: the final position is a mixture of the NOISE paths' end points on the AtGoal circle") {
+  const mission::Mission m = mission::load_mission_file(data("two_robot_race.yaml"));
+  const SystemOutcome o = evaluate(m, perfect_models(m));
+  REQUIRE(!o.branches.empty());
+  const RobotOutcome& r = o.branches[0].robots[0];
+  const Models models = perfect_models(m);
+  // One component per quadrature direction, with perfect odometry: each end
+  // point is where that path's AtGoal fired, so all are (about) the same
+  // distance from the goal, while the moment-matched Gaussian spreads widely.
+  REQUIRE(r.final_components.size() == models.budget.noise_sigma_points);
+  const Eigen::Vector2d goal(m.robots[0].goal.x_m, m.robots[0].goal.y_m);
+  double lo = 1e9, hi = -1e9;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const Gaussian2& g : r.final_components) {
+    const double d = (g.mean - goal).norm();
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
+    mean += g.mean / static_cast<double>(r.final_components.size());
+  }
+  CHECK(hi - lo < 0.05);
+  CHECK((mean - r.final_position.mean).norm() < 1e-9);  // the Gaussian is the mixture's moment match
+  // The criterion uses the mixture: inside the circle every component is, the
+  // probability is near 1; the Gaussian would leak mass outside it.
+  const double within = final_within(r, goal, hi + 0.02);
+  CHECK(within > 0.99);
+  CHECK(within >= probability_within(r.final_position, goal, hi + 0.02));
+}

@@ -208,7 +208,7 @@ class Evaluator {
       }
       case detail::Event::Kind::distance_to_point: {
         const double within =
-            probability_within(robot(b, e.a).final_position, Eigen::Vector2d(e.x, e.y), e.value);
+            final_within(robot(b, e.a), Eigen::Vector2d(e.x, e.y), e.value);
         return detail::is_less(e.op) ? within : 1.0 - within;
       }
       case detail::Event::Kind::distance_between: {

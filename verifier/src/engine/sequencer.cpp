@@ -84,6 +84,7 @@ struct Track {
   BaseState base;                 ///< odometry at the current state's start
   ErrorState error;
   Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
+  std::vector<Eigen::Vector2d> spread_points;  ///< the points `spread` is the covariance of (may be empty)
   StateAnalysis analysis;         ///< of the current state
   std::vector<Pending> pending;
   bool final = false;
@@ -425,7 +426,10 @@ class Sequencer {
     Track& t = b.robots[i];
     t.base = t.analysis.end;
     t.error = t.analysis.error;
-    if (t.analysis.sets_spread) t.spread = t.analysis.end_spread;
+    if (t.analysis.sets_spread) {
+      t.spread = t.analysis.end_spread;
+      t.spread_points = t.analysis.end_offsets;
+    }
     const double now = b.clock.mean();
     const Gaussian2 pi = t.true_position();
     for (std::size_t j = 0; j < b.robots.size(); ++j) {
@@ -444,6 +448,14 @@ class Sequencer {
       RobotOutcome r;
       r.finish_time_s = t.finish;
       r.final_position = t.true_position();
+      // The mixture the final position is: one component per NOISE path end
+      // point, each with the error's own covariance.
+      for (const Eigen::Vector2d& offset : t.spread_points) {
+        Gaussian2 g;
+        g.mean = t.true_mean() + offset;
+        g.cov = t.error.cov.topLeftCorner<2, 2>();
+        r.final_components.push_back(g);
+      }
       r.believed_position = Eigen::Vector2d(t.base.x_m, t.base.y_m);
       r.states = std::move(t.trace);
       r.finished = t.final;
@@ -504,6 +516,15 @@ class Sequencer {
       const double ws[2] = {wa, wb};
       ta.error = combine(errors, ws, 2);
       ta.spread = (wa * ta.spread + wb * tb.spread) / w;
+      // Point j of both is the end of the same NOISE direction: blend them
+      // pointwise; lists that do not match fall back to the Gaussian.
+      if (ta.spread_points.size() == tb.spread_points.size()) {
+        for (std::size_t j = 0; j < ta.spread_points.size(); ++j) {
+          ta.spread_points[j] = (wa * ta.spread_points[j] + wb * tb.spread_points[j]) / w;
+        }
+      } else {
+        ta.spread_points.clear();
+      }
     }
     for (std::size_t m = 0; m < a.delivery.size(); ++m) {
       if (a.delivery[m] && b.delivery[m]) a.delivery[m] = blend(*a.delivery[m], wa, *b.delivery[m], wb, k());

@@ -251,6 +251,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
       if (!p.exit) continue;
       const Eigen::Vector2d d = Eigen::Vector2d(p.end.x_m, p.end.y_m) - mean_xy;
       a.end_spread += (w / finished) * d * d.transpose();
+      a.end_offsets.push_back(d);
     }
   }
 

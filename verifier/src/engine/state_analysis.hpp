@@ -43,6 +43,12 @@ struct StateAnalysis {
   BaseState end;                      ///< mean odometric pose and velocities when the state ends
   Eigen::Matrix2d end_spread = Eigen::Matrix2d::Zero();  ///< odometric end-position spread (GoToGuarded)
   bool sets_spread = false;           ///< true when end_spread replaces the robot's previous spread
+  /// Each finished NOISE path's odometric end minus their mean (equal weights;
+  /// end_spread is their covariance). The end points lie on the AtGoal circle,
+  /// so the distance to the goal hardly varies over them: kept as points, the
+  /// final position is a mixture that keeps that, where one Gaussian would
+  /// smear the arc into a spread of the distance that is not there.
+  std::vector<Eigen::Vector2d> end_offsets;
   ErrorState error;                   ///< the true pose's error at the end
   std::vector<PathSample> path;       ///< every second, for separation (safety) criteria
   std::size_t cycles_simulated = 0;   ///< work done, for budgets and benchmarks

@@ -26,7 +26,7 @@ double branch_radius(const Branch& b, const mission::Mission& mission, double rm
   double p = 1.0;
   for (std::size_t i = 0; i < b.robots.size() && p > 0.0; ++i) {
     const Eigen::Vector2d goal(mission.robots[i].goal.x_m, mission.robots[i].goal.y_m);
-    p *= probability_within(b.robots[i].final_position, goal, rmax);
+    p *= final_within(b.robots[i], goal, rmax);
   }
   return p;
 }
@@ -146,7 +146,7 @@ Result<VerifyResult> verify(const mission::Mission& mission, const Models& model
       finish.emplace_back(b.weight, &b.robots[i].finish_time_s);
       w += b.weight;
       mean += b.weight * b.robots[i].final_position.mean;
-      rp.p_radius += b.weight * probability_within(b.robots[i].final_position, goal, r.rmax_m);
+      rp.p_radius += b.weight * final_within(b.robots[i], goal, r.rmax_m);
     }
     moments(finish, rp.finish_mean_s, rp.finish_sd_s);
     if (w > 0.0) {

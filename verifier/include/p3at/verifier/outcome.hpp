@@ -16,14 +16,28 @@ namespace p3at::verifier {
 struct RobotOutcome {
   /// When its FSA reached a final state (mission clock, seconds from launch).
   Mixture1 finish_time_s;
-  /// Its true final position.
+  /// Its true final position (moment-matched when final_components is not empty).
   Gaussian2 final_position;
+  /// The true final position as an equal-weight mixture, when the robot's
+  /// last GoToGuarded left one end point per NOISE direction (empty: use
+  /// final_position). Radius criteria use it: the end points lie on an arc
+  /// of the AtGoal circle, which one Gaussian cannot represent.
+  std::vector<Gaussian2> final_components;
   /// Where its odometry says it is at the end (the mean the executive believes).
   Eigen::Vector2d believed_position = Eigen::Vector2d::Zero();
   /// The names of the FSA states it went through, in order (its trace).
   std::vector<std::string> states;
   bool finished = true;   ///< false if it never reached a final state in this branch (blocked, looped)
 };
+
+/// P(|final position - centre| < radius): over final_components when there
+/// are any, else with final_position.
+inline double final_within(const RobotOutcome& r, const Eigen::Vector2d& centre, double radius) {
+  if (r.final_components.empty()) return probability_within(r.final_position, centre, radius);
+  double sum = 0.0;
+  for (const Gaussian2& g : r.final_components) sum += probability_within(g, centre, radius);
+  return sum / static_cast<double>(r.final_components.size());
+}
 
 /// A sample of two robots' relative true position at some moment, for safety
 /// criteria (eq. 6): difference = position(i) - position(j).
