@@ -51,7 +51,7 @@ struct RobotPrediction {
   double finish_mean_s = 0.0, finish_sd_s = 0.0;
   double final_x_m = 0.0, final_y_m = 0.0;       ///< mean true final position
   double final_sd_m = 0.0;                       ///< sqrt(trace(cov)/2)
-  double dist_mean_m = 0.0;                      ///< mean true distance to goal
+  double dist_mean_m = 0.0;                      ///< E|true final position - goal| (as vipars validate's)
   double p_radius = 0.0;                         ///< P(r_i <= rmax)
 };
 
