@@ -47,6 +47,33 @@ std::optional<std::size_t> fired_exit(const mission::RobotSpec& robot, std::size
   return std::nullopt;
 }
 
+/// The executive checks a trigger once per cycle, and where in that cycle a
+/// real run crosses the threshold (AtGoal's radius, HasTurned's angle) is as
+/// good as random: a deterministic path has one phase, real runs all of them.
+/// With the crossing a fraction c into the last cycle (linear between the two
+/// checks), the check that fires comes uniformly 0..1 cycle after it: on
+/// average at (c + 0.5) cycles into it, i.e. c - 0.5 cycles from the
+/// deterministic firing. Returns that offset, in [-0.5, 0.5].
+double crossing_phase(const mission::RobotSpec& robot, std::size_t transition, const BaseState& before,
+                      const BaseState& now, double turned_before, double turned_now) {
+  const mission::TriggerParams& trigger = robot.transitions[transition].trigger;
+  double from = 0.0, to = 0.0, threshold = 0.0;
+  if (const auto* g = std::get_if<mission::AtGoalParams>(&trigger)) {
+    from = std::hypot(g->goal.x_m - before.x_m, g->goal.y_m - before.y_m);
+    to = std::hypot(g->goal.x_m - now.x_m, g->goal.y_m - now.y_m);
+    threshold = g->radius_m;
+  } else if (const auto* h = std::get_if<mission::HasTurnedParams>(&trigger)) {
+    from = -turned_before;  // decreasing toward -threshold, like a distance
+    to = -turned_now;
+    threshold = -(h->angle_deg - h->offset_deg) * kDegToRad;
+  } else {
+    return 0.0;
+  }
+  if (!(from > threshold) || !(from > to)) return 0.0;  // fired at once, or not by moving toward it
+  const double c = std::clamp((from - threshold) / (from - to), 0.0, 1.0);
+  return c - 0.5;
+}
+
 bool has_trigger_kind(const mission::RobotSpec& robot, std::size_t state, mission::TriggerKind kind) {
   return std::any_of(robot.states[state].outgoing.begin(), robot.states[state].outgoing.end(),
                      [&](std::size_t t) { return robot.transitions[t].kind() == kind; });
@@ -56,6 +83,10 @@ bool has_trigger_kind(const mission::RobotSpec& robot, std::size_t state, missio
 struct PathResult {
   std::optional<std::size_t> exit;
   std::size_t cycles = 0;
+  /// Where in its last cycle the path crossed its trigger's threshold, as the
+  /// expected firing time's offset from `cycles` (see crossing_phase()); the
+  /// end pose is the one at that expected firing.
+  double phase_cycles = 0.0;
   BaseState end;
   ErrorState error;
   std::vector<PathSample> samples;
@@ -86,12 +117,21 @@ PathResult run_path(const StateContext& ctx, std::size_t state, const BaseState&
   PathResult r;
   r.end = start;
   r.error = error_start;
-  double turned = 0.0;
+  double turned = 0.0, turned_before = 0.0;
+  BaseState before = start;
   for (std::size_t n = 0;; ++n) {
     if (n >= 1) {
       if (const auto fired = fired_exit(robot, state, r.end, turned)) {
         r.exit = fired;
         r.cycles = n;
+        // The pose at the expected firing, not at this path's phase: moved
+        // along the last cycle's step by the phase offset. (The duration
+        // stays in whole cycles: the orderings of events in the same cycle,
+        // an acknowledgement racing a delivery, are decided in whole cycles.)
+        r.phase_cycles = crossing_phase(robot, *fired, before, r.end, turned_before, turned);
+        r.end.x_m += r.phase_cycles * (r.end.x_m - before.x_m);
+        r.end.y_m += r.phase_cycles * (r.end.y_m - before.y_m);
+        r.end.theta_rad += r.phase_cycles * (r.end.theta_rad - before.theta_rad);
         return r;
       }
     }
@@ -126,6 +166,8 @@ PathResult run_path(const StateContext& ctx, std::size_t state, const BaseState&
     } else if (spin) {
       rot = exec::spin_command(*spin, config).rot_radps;
     }
+    before = r.end;
+    turned_before = turned;
     const CycleIncrement inc = step_cycle(r.end, trans, rot, k);
     propagate(r.error, inc, ctx.model->motion);
     turned += std::abs(exec::wrap_angle_rad(inc.dtheta_rad));
