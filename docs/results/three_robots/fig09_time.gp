@@ -18,8 +18,8 @@ set object 3 rectangle from 175.25, graph 0 to 185, graph 1 behind fillcolor rgb
 set label 3 "High confidence\n(successful)" at 180.125, graph 0.93 center front
 set arrow 90 from 170, graph 0 to 170, graph 1 nohead back dashtype 2 linecolor rgb "#555555"
 set label 90 "criterion 170 s" at 170, graph 0.02 left offset 0.5,0.6 textcolor rgb "#555555"
-set arrow 91 from 171.5, 0.77067742734861067 to 171.5, 0.79420000000000002 nohead front linecolor rgb "black" linewidth 3
-set label 91 "max |verify − validate| = 0.024\nat 171.5 s" at 171.5, 0.7824387136743054 right offset -1,0 front
+set arrow 91 from 171.5, 0.76656685061046148 to 171.5, 0.79420000000000002 nohead front linecolor rgb "black" linewidth 3
+set label 91 "max |verify − validate| = 0.028\nat 171.5 s" at 171.5, 0.78038342530523075 right offset -1,0 front
 set terminal pngcairo size 1000,620 noenhanced font "DejaVu Sans,11"
 set output "fig09_time.png"
 plot "fig09_time.dat" using 1:4:5 with filledcurves fillcolor rgb "#fdb863" fillstyle transparent solid 0.55 noborder title "validation 95 % Wilson interval", \
