@@ -139,6 +139,9 @@ for s in summaries:
     dists.append(math.hypot(float(last[r]["true_x_m"]) - goals[r][0], float(last[r]["true_y_m"]) - goals[r][1]))
 met = outcome == "completed" and t_end <= float(check["tmax_s"]) and all(d <= float(check["rmax_m"]) for d in dists)
 print(f"  criteria:     {'met' if met else 'NOT met'} (done by Tmax and every robot within Rmax of its goal, true positions)")
+p_joint = float(check.get("p_joint", "nan"))
+print(f"                one run is one draw: at P(success) {p_joint:.2f} about {100 * (1 - p_joint):.0f} runs in 100 miss"
+      f" the criteria (bash scripts/hil-trials.sh 12 runs twelve; the fast-time comparison is below)")
 reverify = []
 for log in logs:
     for line in open(log):
