@@ -3,7 +3,8 @@
 # every test. This is what .ci/run calls.
 #   1. release build: unit and hardware-in-the-loop (sitl) tests
 #   2. the same tests under AddressSanitizer + UndefinedBehaviorSanitizer
-#   3. libFuzzer targets, each for a bounded time (P3AT_FUZZ_SECONDS, default 30)
+#   3. libFuzzer targets, each for a bounded time (P3AT_FUZZ_SECONDS, default 20;
+#      longer runs locally: P3AT_FUZZ_SECONDS=600 bash scripts/test.sh)
 #   4. SocketCAN tests inside a user-mode Linux kernel with vcan
 set -euo pipefail
 cd "$(dirname "$0")/.."
