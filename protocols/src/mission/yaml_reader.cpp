@@ -6,28 +6,13 @@
 #include <system_error>
 
 #include "p3at/protocols/mission/loader.hpp"
+#include "p3at/protocols/yaml_document.hpp"
 
 namespace p3at::mission::detail {
 
 // User text echoed in a message is shortened and every byte outside printable
 // ASCII escaped (names are ASCII anyway), so an error is always one readable line.
-std::string show(std::string_view text) {
-  constexpr std::size_t kMax = 48;
-  std::string out;
-  for (char c : text.substr(0, kMax)) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (byte < 0x20 || byte >= 0x7f) {
-      constexpr std::array<char, 17> kHex{"0123456789abcdef"};
-      out += "\\x";
-      out += kHex[byte >> 4U];
-      out += kHex[byte & 0xFU];
-    } else {
-      out += c;
-    }
-  }
-  if (text.size() > kMax) out += "...";
-  return out;
-}
+std::string show(std::string_view text) { return yaml_document::show(text); }
 
 namespace {
 
