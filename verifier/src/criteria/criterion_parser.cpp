@@ -90,27 +90,8 @@ Comparison read_comparison(Parser& parser, const detail::VariableKinds& kinds) {
   c.left.push_back(parser.expr());
   while (parser.accept(Tok::comma)) c.left.push_back(parser.expr());
   const Token& op = parser.peek();
-  switch (op.kind) {
-    case Tok::less: c.op = pars::CompareOp::less; break;
-    case Tok::less_equal: c.op = pars::CompareOp::less_equal; break;
-    case Tok::greater: c.op = pars::CompareOp::greater; break;
-    case Tok::greater_equal: c.op = pars::CompareOp::greater_equal; break;
-    case Tok::equal: c.op = pars::CompareOp::equal; break;
-    case Tok::not_equal: c.op = pars::CompareOp::not_equal; break;
-    case Tok::end:
-    case Tok::name:
-    case Tok::number:
-    case Tok::lparen:
-    case Tok::rparen:
-    case Tok::comma:
-    case Tok::semicolon:
-    case Tok::bar:
-    case Tok::hash:
-    case Tok::plus:
-    case Tok::minus:
-    case Tok::star:
-    case Tok::slash:
-    case Tok::arrow: parser.fail(op, "expected a comparison (<, <=, > or >=), got " + Parser::describe(op));
+  if (!pars::detail::compare_op(op.kind, c.op)) {
+    parser.fail(op, "expected a comparison (<, <=, > or >=), got " + Parser::describe(op));
   }
   parser.next();
   c.right = parser.expr();

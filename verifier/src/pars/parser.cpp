@@ -294,7 +294,6 @@ Term Parser::process_term() {
 Expr Parser::expr() { return sum(0).expr; }
 Expr Parser::comparison() { return comparison_node(0).expr; }
 
-namespace {
 bool compare_op(Tok kind, CompareOp& op) {
   switch (kind) {
     case Tok::less: op = CompareOp::less; return true;
@@ -320,7 +319,6 @@ bool compare_op(Tok kind, CompareOp& op) {
   }
   return false;
 }
-}  // namespace
 
 Parser::Node Parser::comparison_node(int nesting) {
   Node left = sum(nesting);

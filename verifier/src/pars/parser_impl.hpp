@@ -93,4 +93,8 @@ class Parser {
   std::size_t pos_ = 0;
 };
 
+/// The comparison a token stands for (<, <=, >, >=, ==, !=); false for any
+/// other token. Shared by expressions and criterion files.
+bool compare_op(Tok kind, CompareOp& op);
+
 }  // namespace p3at::verifier::pars::detail
