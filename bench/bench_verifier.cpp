@@ -34,7 +34,7 @@
 #include <vector>
 
 #include "p3at/common/log.hpp"
-#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/mission/loader.hpp"
 #include "p3at/verifier/models.hpp"
 #include "p3at/verifier/verify.hpp"
 #include "relay_mission_generator.hpp"

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/mission/loader.hpp"
 
 namespace p3at::bench {
 namespace {

@@ -21,7 +21,7 @@
 #include <cstddef>
 #include <string>
 
-#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/mission/mission.hpp"
 #include "p3at/verifier/models.hpp"
 
 namespace p3at::bench {

@@ -20,8 +20,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ -z "${P3AT_DEMO_BIN:-}" ]; then
   bash scripts/install-deps.sh >/dev/null
-  echo "building (release)…"
-  bash scripts/build.sh release >/dev/null
+  echo "building (release: the five programs the demo runs, not the test suite)…"
+  bash scripts/build.sh release p3at_sim p3at_ctl vipars mission_exec p3at_team_key >/dev/null
   bin=build/release/bin
 else
   bin="$P3AT_DEMO_BIN"

@@ -15,7 +15,7 @@
 #include <cstdio>
 #include <string>
 
-#include "p3at/hal/team_key.hpp"
+#include "p3at/team_link/team_key.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{

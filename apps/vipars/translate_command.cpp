@@ -11,7 +11,7 @@
 #include <string>
 
 #include "commands.hpp"
-#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/mission/loader.hpp"
 #include "p3at/verifier/criteria.hpp"
 #include "p3at/verifier/pars/printer.hpp"
 #include "p3at/verifier/translate.hpp"

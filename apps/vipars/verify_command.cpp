@@ -12,7 +12,7 @@
 #include "commands.hpp"
 #include "p3at/validation/range_arg.hpp"
 #include "p3at/validation/verify_output.hpp"
-#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/mission/loader.hpp"
 #include "p3at/verifier/models.hpp"
 #include "p3at/verifier/verify.hpp"
 

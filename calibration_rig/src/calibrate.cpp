@@ -21,6 +21,7 @@
 #include "p3at/calibration_rig/calibrate_hal.hpp"
 #include "p3at/calibration_rig/calibrate_messages.hpp"
 #include "p3at/calibration_rig/calibrate.hpp"
+#include "p3at/common/number_format.hpp"
 #include "p3at/common/vipars_exit.hpp"
 #include "p3at/sim/p3at_model.hpp"
 #include "p3at/sim/sim_drive_base.hpp"
@@ -44,11 +45,6 @@ std::string command_line(const CalibrateOptions& o) {
     for (char ch : value) quoted += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
     c += " " + flag + " " + (plain ? value : quoted + "'");
   };
-  const auto num = [](double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", v);
-    return std::string(buf);
-  };
   if (!o.world_file.empty()) add("--world", o.world_file);
   if (!o.robots.empty()) {
     std::string list;
@@ -60,12 +56,12 @@ std::string command_line(const CalibrateOptions& o) {
   } else {
     if (!o.hal_url.empty()) add("--hal", o.hal_url);
     if (!o.truth_csv.empty()) add("--truth-csv", o.truth_csv);
-    if (!o.hal_url.empty() && o.plan.speedup != 1.0) add("--speedup", num(o.plan.speedup));
+    if (!o.hal_url.empty() && o.plan.speedup != 1.0) add("--speedup", format_general(o.plan.speedup));
     add("--runs", std::to_string(o.plan.runs));
-    add("--speed", num(o.plan.speed_mps));
-    add("--distance", num(o.plan.distance_m));
-    add("--spin-deg", num(o.plan.spin_deg));
-    add("--spin-rate", num(o.plan.spin_rate_degps));
+    add("--speed", format_general(o.plan.speed_mps));
+    add("--distance", format_general(o.plan.distance_m));
+    add("--spin-deg", format_general(o.plan.spin_deg));
+    add("--spin-rate", format_general(o.plan.spin_rate_degps));
     if (o.hal_url.empty()) {
       add("--messages", std::to_string(o.messages));
       add("--peer-phase", o.peer_phase);

@@ -14,8 +14,8 @@
 #include <stdexcept>
 #include <utility>
 
-#include "p3at/hal/team_key.hpp"
-#include "p3at/hal/team_protocol.hpp"
+#include "p3at/team_link/team_key.hpp"
+#include "p3at/team_link/team_protocol.hpp"
 #include "p3at/sim/rng.hpp"
 
 namespace p3at::vipars {

@@ -10,6 +10,7 @@
 #include <variant>
 
 #include "p3at/common/log.hpp"
+#include "p3at/common/number_format.hpp"
 #include "p3at/executive/frames.hpp"
 #include "p3at/executive/sonar.hpp"
 
@@ -21,15 +22,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegToRad = kPi / 180.0;
 constexpr double kRadToDeg = 180.0 / kPi;
 
-/// `value` with `decimals` digits after the point, for log lines.
-std::string fixed(double value, int decimals) {
-  char buffer[48];
-  const int n = std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
-  if (n < 0) return {};
-  return std::string(buffer, std::min(static_cast<std::size_t>(n), sizeof buffer - 1));
-}
-
-std::string seconds(double t_s) { return fixed(t_s, 3); }
+std::string seconds(double t_s) { return format_fixed(t_s, 3); }
 
 std::optional<std::string> trigger_message(const mission::TriggerParams& trigger) {
   if (const auto* n = std::get_if<mission::NotifiedParams>(&trigger)) return n->message;
@@ -135,7 +128,7 @@ bool RobotExecutive::team_settled() const {
 }
 
 std::string RobotExecutive::pose_fields() const {
-  return "x_m=" + fixed(pose_.x_m, 3) + " y_m=" + fixed(pose_.y_m, 3) + " th_deg=" + fixed(pose_.theta_rad * kRadToDeg, 1);
+  return "x_m=" + format_fixed(pose_.x_m, 3) + " y_m=" + format_fixed(pose_.y_m, 3) + " th_deg=" + format_fixed(pose_.theta_rad * kRadToDeg, 1);
 }
 
 // ------------------------------------------------------------------ the cycle
@@ -277,8 +270,8 @@ void RobotExecutive::enter_state(std::size_t index) {
         } else if constexpr (std::is_same_v<T, mission::SpinParams>) {
           if (std::abs(params.rate_deg_s * kDegToRad) > behavior_config_.max_rot_radps) {
             log::warn(kLog, "event=spin-limited robot=" + robot().name + " state=" + s.name + " rate_deg_s=" +
-                                fixed(params.rate_deg_s, 1) + " max_deg_s=" +
-                                fixed(behavior_config_.max_rot_radps * kRadToDeg, 1));
+                                format_fixed(params.rate_deg_s, 1) + " max_deg_s=" +
+                                format_fixed(behavior_config_.max_rot_radps * kRadToDeg, 1));
           }
         } else if constexpr (std::is_same_v<T, mission::NotifyParams>) {
           send_notification(params);

@@ -7,7 +7,7 @@
 #include <chrono>
 #include <string>
 
-#include "p3at/hal/datagram_team_link.hpp"
+#include "p3at/team_link/datagram_team_link.hpp"
 #include "p3at/hal/url.hpp"
 
 namespace p3at::hal {
@@ -81,7 +81,7 @@ class LcmTeamLink final : public DatagramTeamLink {
 
 }  // namespace
 
-Result<std::unique_ptr<TeamLink>> open_lcm_team_link(std::string_view lcm_url, TeamLinkConfig config,
+Result<std::unique_ptr<gate::VerdictLink>> open_lcm_team_link(std::string_view lcm_url, TeamLinkConfig config,
                                                      const TeamKey& key) {
   const std::string url(lcm_url);
   auto parsed = parse_url(url);
@@ -104,7 +104,7 @@ Result<std::unique_ptr<TeamLink>> open_lcm_team_link(std::string_view lcm_url, T
   }
   auto link = std::make_unique<LcmTeamLink>(std::move(protocol.value()), std::move(lcm), url);
   if (auto s = link->subscribe(); !s) return s.error();
-  return std::unique_ptr<TeamLink>(std::move(link));
+  return std::unique_ptr<gate::VerdictLink>(std::move(link));
 }
 
 }  // namespace p3at::hal

@@ -68,8 +68,8 @@ std::string check_fields(const CheckReport& report) {
   return out;
 }
 
-std::string verdict_fields(const hal::GateVerdict& verdict) {
-  return "robot=" + verdict.robot + " decision=" + hal::to_string(verdict.decision) + " p_joint=" +
+std::string verdict_fields(const gate::GateVerdict& verdict) {
+  return "robot=" + verdict.robot + " decision=" + gate::to_string(verdict.decision) + " p_joint=" +
          fixed(verdict.p_joint, 4) + " threshold=" + fixed(verdict.threshold, 4) +
          " hash=" + verdict.mission_hash.substr(0, 16);
 }

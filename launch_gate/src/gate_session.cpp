@@ -14,7 +14,7 @@ constexpr const char* kLog = "gate";
 
 class Publisher {
  public:
-  Publisher(hal::TeamLink& link, const hal::GateVerdict& own, std::int64_t every_us)
+  Publisher(VerdictLink& link, const gate::GateVerdict& own, std::int64_t every_us)
       : link_(link), own_(own), every_us_(every_us) {}
 
   /// Publishes when due; returns the next due time.
@@ -32,8 +32,8 @@ class Publisher {
   std::uint64_t published() const { return published_; }
 
  private:
-  hal::TeamLink& link_;
-  const hal::GateVerdict& own_;
+  VerdictLink& link_;
+  const gate::GateVerdict& own_;
   std::int64_t every_us_;
   // Due at once: the first tick always publishes. (A plain integer rather
   // than std::optional: GCC 12 -O2 reports a false maybe-uninitialized on it.)
@@ -44,7 +44,7 @@ class Publisher {
 
 }  // namespace
 
-SessionResult run_gate_session(hal::TeamLink& link, hal::Clock& clock, const hal::GateVerdict& own,
+SessionResult run_gate_session(VerdictLink& link, hal::Clock& clock, const gate::GateVerdict& own,
                                const std::vector<std::string>& roster, const SessionOptions& options,
                                const std::function<void(std::int64_t)>& pace, const std::atomic<bool>* stop) {
   const auto wait_until = [&](std::int64_t deadline_us) {
@@ -65,7 +65,7 @@ SessionResult run_gate_session(hal::TeamLink& link, hal::Clock& clock, const hal
       log::warn(kLog, "event=team-poll-error error=\"" + st.error().message + "\"");
     }
     // One line per teammate the first time its verdict is heard.
-    for (const hal::GateVerdict& v : link.teammate_verdicts()) {
+    for (const gate::GateVerdict& v : link.teammate_verdicts()) {
       if (heard.insert(v.robot).second) log::info(kLog, "event=verdict-heard " + verdict_fields(v));
     }
   };

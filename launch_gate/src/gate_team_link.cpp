@@ -31,7 +31,7 @@ void GateTeamLink::hand_over(std::vector<hal::TeamNotification> early) {
   early_.insert(early_.end(), std::make_move_iterator(early.begin()), std::make_move_iterator(early.end()));
 }
 
-void GateTeamLink::keep_publishing(hal::GateVerdict verdict, std::int64_t republish_us) {
+void GateTeamLink::keep_publishing(gate::GateVerdict verdict, std::int64_t republish_us) {
   verdict_ = std::move(verdict);
   republish_us_ = republish_us;
   next_verdict_us_.reset();

@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "p3at/launch_gate/mission_hash.hpp"
-#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/mission/loader.hpp"
 
 namespace p3at::gate {
 namespace {
@@ -111,9 +111,9 @@ CheckReport pre_launch_check(const CheckRequest& request, const VerdictSource& s
   return report;
 }
 
-hal::GateVerdict make_verdict(const CheckReport& report, bool override_gate) {
+gate::GateVerdict make_verdict(const CheckReport& report, bool override_gate) {
   const verifier::VerifyResult& r = report.result;
-  hal::GateVerdict v;
+  gate::GateVerdict v;
   v.mission_hash = report.mission_hash;
   v.p_time = r.p_time;
   v.p_radius = r.p_radius;
@@ -122,11 +122,11 @@ hal::GateVerdict make_verdict(const CheckReport& report, bool override_gate) {
   v.tmax_s = r.tmax_s;
   v.rmax_m = r.rmax_m;
   if (override_gate) {
-    v.decision = hal::GateDecision::override_go;
+    v.decision = gate::GateDecision::override_go;
     v.detail = std::string("operator override; the verifier said ") + (r.go ? "GO" : "NO-GO");
     if (!r.failed.empty()) v.detail += ": " + join(r.failed, "; ");
   } else {
-    v.decision = r.go ? hal::GateDecision::go : hal::GateDecision::no_go;
+    v.decision = r.go ? gate::GateDecision::go : gate::GateDecision::no_go;
     v.detail = join(r.failed, "; ");
   }
   return v;

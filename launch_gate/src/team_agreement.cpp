@@ -18,7 +18,7 @@ const char* to_string(AgreementState state) {
   return "?";
 }
 
-TeamAgreement::TeamAgreement(hal::GateVerdict own, std::vector<std::string> roster, std::int64_t start_us,
+TeamAgreement::TeamAgreement(gate::GateVerdict own, std::vector<std::string> roster, std::int64_t start_us,
                              std::int64_t timeout_us)
     : own_(std::move(own)), start_us_(start_us), timeout_us_(timeout_us) {
   for (std::string& name : roster) {
@@ -31,14 +31,14 @@ void TeamAgreement::decide(AgreementState state, std::string reason) {
   agreement_.reason = std::move(reason);
 }
 
-const Agreement& TeamAgreement::update(std::int64_t now_us, const std::vector<hal::GateVerdict>& teammates) {
+const Agreement& TeamAgreement::update(std::int64_t now_us, const std::vector<gate::GateVerdict>& teammates) {
   if (decided()) return agreement_;
   agreement_.team.assign(1, own_);
   agreement_.silent.clear();
-  std::vector<const hal::GateVerdict*> heard;
+  std::vector<const gate::GateVerdict*> heard;
   for (const std::string& name : teammates_) {
     const auto it = std::find_if(teammates.begin(), teammates.end(),
-                                 [&](const hal::GateVerdict& v) { return v.robot == name; });
+                                 [&](const gate::GateVerdict& v) { return v.robot == name; });
     if (it == teammates.end()) {
       agreement_.silent.push_back(name);
     } else {
@@ -47,13 +47,13 @@ const Agreement& TeamAgreement::update(std::int64_t now_us, const std::vector<ha
     }
   }
 
-  if (own_.decision == hal::GateDecision::no_go) {
+  if (own_.decision == gate::GateDecision::no_go) {
     decide(AgreementState::no_go, "this robot's verdict is NO-GO: P(success) " + fixed(own_.p_joint, 4) +
                                       " < threshold " + fixed(own_.threshold, 4) +
                                       (own_.detail.empty() ? "" : " (" + own_.detail + ")"));
     return agreement_;
   }
-  for (const hal::GateVerdict* v : heard) {
+  for (const gate::GateVerdict* v : heard) {
     if (v->mission_hash != own_.mission_hash) {
       decide(AgreementState::mismatch, "teammate " + v->robot + " verified a different mission or models (hash " +
                                            v->mission_hash.substr(0, 16) + "…, ours " +
@@ -61,8 +61,8 @@ const Agreement& TeamAgreement::update(std::int64_t now_us, const std::vector<ha
       return agreement_;
     }
   }
-  for (const hal::GateVerdict* v : heard) {
-    if (v->decision == hal::GateDecision::no_go) {
+  for (const gate::GateVerdict* v : heard) {
+    if (v->decision == gate::GateDecision::no_go) {
       decide(AgreementState::no_go, "teammate " + v->robot + " says NO-GO: P(success) " + fixed(v->p_joint, 4) +
                                         " < threshold " + fixed(v->threshold, 4) +
                                         (v->detail.empty() ? "" : " (" + v->detail + ")"));
@@ -71,8 +71,8 @@ const Agreement& TeamAgreement::update(std::int64_t now_us, const std::vector<ha
   }
   if (agreement_.silent.empty()) {
     std::string votes;
-    for (const hal::GateVerdict& v : agreement_.team) {
-      votes += (votes.empty() ? "" : ",") + v.robot + ":" + hal::to_string(v.decision);
+    for (const gate::GateVerdict& v : agreement_.team) {
+      votes += (votes.empty() ? "" : ",") + v.robot + ":" + gate::to_string(v.decision);
     }
     decide(AgreementState::launch, "every robot agrees: " + votes);
     return agreement_;

@@ -6,17 +6,13 @@
 #include <string_view>
 #include <utility>
 
+#include "p3at/common/number_format.hpp"
+
 namespace p3at::vipars::report {
 namespace {
 
-std::string number(double value, int digits = 15) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, value);
-  return buf;
-}
-
 void add_criterion_and_grid(std::vector<std::string>& words, const Side& s) {
-  words.insert(words.end(), {"--tmax", number(s.tmax_s), "--rmax", number(s.rmax_m)});
+  words.insert(words.end(), {"--tmax", format_general(s.tmax_s, 15), "--rmax", format_general(s.rmax_m, 15)});
   for (auto [flag, axis] : {std::pair{"--tmax-range", &s.tmax}, std::pair{"--rmax-range", &s.rmax}}) {
     const auto range = range_text(*axis);
     words.insert(words.end(), {flag, range.value_or("UNEVEN-AXIS")});
@@ -55,7 +51,7 @@ std::optional<std::string> range_text(const std::vector<double>& axis) {
     if (std::abs(axis[k] - (a + static_cast<double>(k) * step)) > 1e-9 * std::max(1.0, std::abs(axis[k])))
       return std::nullopt;
   }
-  return number(a) + ":" + number(b) + ":" + number(step, 12);
+  return format_general(a, 15) + ":" + format_general(b, 15) + ":" + format_general(step, 12);
 }
 
 std::string verify_command(const Side& v, const std::string& mission_file, const std::string& models_file,

@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "p3at/common/number_format.hpp"
 #include "p3at/common/vipars_exit.hpp"
 #include "p3at/report/make_report.hpp"
 #include "p3at/report/report_build.hpp"
@@ -49,11 +50,7 @@ Status write_json(const std::string& path, const nlohmann::ordered_json& doc) {
 
 std::string numbers(const std::vector<double>& values) {
   std::string s;
-  for (const double v : values) {
-    char buf[48];
-    std::snprintf(buf, sizeof buf, "%.15g", v);
-    s += (s.empty() ? "" : ",") + std::string(buf);
-  }
+  for (const double v : values) s += (s.empty() ? "" : ",") + format_general(v, 15);
   return s;
 }
 

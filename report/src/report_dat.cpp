@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <fstream>
 
+#include "p3at/common/number_format.hpp"
+
 namespace p3at::vipars::report {
 namespace {
 
@@ -36,11 +38,7 @@ std::string curve_file(const std::string& axis_column, const std::vector<double>
 
 }  // namespace
 
-std::string exact(double value) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", value);
-  return buf;
-}
+std::string exact(double value) { return format_general(value, 17); }
 
 std::vector<std::size_t> default_slices(const std::vector<double>& v, const std::vector<double>& w, std::size_t count) {
   const std::size_t n = std::min(v.size(), w.size());

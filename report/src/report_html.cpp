@@ -6,20 +6,10 @@
 #include <cstdio>
 #include <fstream>
 
+#include "p3at/common/number_format.hpp"
+
 namespace p3at::vipars::report {
 namespace {
-
-std::string fixed(double value, int decimals) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, value);
-  return buf;
-}
-
-std::string shortest(double value) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.6g", value);
-  return buf;
-}
 
 std::string hex(const unsigned char* bytes, std::size_t n) {
   static constexpr char kDigits[] = "0123456789abcdef";
@@ -40,17 +30,17 @@ std::string verdict(bool pass) { return pass ? "<span class=pass>PASS</span>" : 
 
 std::string where(const ErrorSummary& e) {
   std::string s;
-  if (e.at_tmax_s) s += "Tmax " + shortest(*e.at_tmax_s) + " s";
-  if (e.at_rmax_m) s += std::string(s.empty() ? "" : ", ") + "Rmax " + shortest(*e.at_rmax_m) + " m";
+  if (e.at_tmax_s) s += "Tmax " + format_general(*e.at_tmax_s) + " s";
+  if (e.at_rmax_m) s += std::string(s.empty() ? "" : ", ") + "Rmax " + format_general(*e.at_rmax_m) + " m";
   return s;
 }
 
-std::string region_cell(const std::optional<double>& value) { return value ? fixed(*value, 3) : "–"; }
+std::string region_cell(const std::optional<double>& value) { return value ? format_fixed(*value, 3) : "–"; }
 
 std::string error_row(const std::string& name, const ErrorSummary& e) {
-  return "<tr><td>" + html_escape(name) + "</td><td class=num>" + fixed(e.max, 4) + "</td><td>" + where(e) +
-         "</td><td class=num>" + fixed(e.verify, 4) + " / " + fixed(e.validate, 4) + "</td><td class=num>≤ " +
-         shortest(e.limit) + "</td><td>" + verdict(e.pass()) + "</td><td class=num>" + fixed(e.mean, 4) +
+  return "<tr><td>" + html_escape(name) + "</td><td class=num>" + format_fixed(e.max, 4) + "</td><td>" + where(e) +
+         "</td><td class=num>" + format_fixed(e.verify, 4) + " / " + format_fixed(e.validate, 4) + "</td><td class=num>≤ " +
+         format_general(e.limit) + "</td><td>" + verdict(e.pass()) + "</td><td class=num>" + format_fixed(e.mean, 4) +
          "</td><td class=num>" + std::to_string(e.within_ci) + " / " + std::to_string(e.points) + "</td>" +
          "<td class=num>" + region_cell(e.max_by_region[0]) + "</td><td class=num>" + region_cell(e.max_by_region[1]) +
          "</td><td class=num>" + region_cell(e.max_by_region[2]) + "</td></tr>\n";
@@ -59,14 +49,14 @@ std::string error_row(const std::string& name, const ErrorSummary& e) {
 std::string point_row(const std::string& name, double v, double w, const Side& validation, std::size_t k) {
   std::string ci = "–";
   if (validation.point_ci_low && validation.point_ci_high) {
-    ci = "[" + fixed((*validation.point_ci_low)[k], 3) + ", " + fixed((*validation.point_ci_high)[k], 3) + "]";
+    ci = "[" + format_fixed((*validation.point_ci_low)[k], 3) + ", " + format_fixed((*validation.point_ci_high)[k], 3) + "]";
   }
-  return "<tr><td>" + html_escape(name) + "</td><td class=num>" + fixed(v, 4) + "</td><td class=num>" + fixed(w, 4) +
-         "</td><td class=num>" + ci + "</td><td class=num>" + fixed(std::abs(v - w), 4) + "</td></tr>\n";
+  return "<tr><td>" + html_escape(name) + "</td><td class=num>" + format_fixed(v, 4) + "</td><td class=num>" + format_fixed(w, 4) +
+         "</td><td class=num>" + ci + "</td><td class=num>" + format_fixed(std::abs(v - w), 4) + "</td></tr>\n";
 }
 
 std::string axis_text(const std::vector<double>& axis, const std::string& unit) {
-  return shortest(axis.front()) + " .. " + shortest(axis.back()) + " " + unit + " (" + std::to_string(axis.size()) +
+  return format_general(axis.front()) + " .. " + format_general(axis.back()) + " " + unit + " (" + std::to_string(axis.size()) +
          " values)";
 }
 
@@ -148,24 +138,24 @@ std::string report_html(const HtmlInputs& in) {
   s += "<p>Mission <b>" + html_escape(v.mission) + "</b>. " + verdict(c.pass()) +
        (c.pass() ? ": the verification stays within every bound on its error"
                  : ": the verification's error exceeds a bound (below)") +
-       " (max |verify − validate| ≤ " + shortest(c.time.limit) + " over P(t ≤ Tmax), ≤ " + shortest(c.radius.limit) +
-       " over P(every r ≤ Rmax), ≤ " + shortest(c.joint.limit) +
+       " (max |verify − validate| ≤ " + format_general(c.time.limit) + " over P(t ≤ Tmax), ≤ " + format_general(c.radius.limit) +
+       " over P(every r ≤ Rmax), ≤ " + format_general(c.joint.limit) +
        " over the joint surface). Validation: " + (w.runs ? std::to_string(*w.runs) : std::string("?")) + " runs, " +
        (w.failed_runs ? std::to_string(*w.failed_runs) : std::string("?")) + " failed.</p>\n";
 
-  s += "<h2>At the criterion point: Tmax " + shortest(v.tmax_s) + " s, Rmax " + shortest(v.rmax_m) + " m</h2>\n";
+  s += "<h2>At the criterion point: Tmax " + format_general(v.tmax_s) + " s, Rmax " + format_general(v.rmax_m) + " m</h2>\n";
   s += "<table>\n<tr><th>probability</th><th>verification</th><th>validation</th><th>validation 95 % Wilson</th>"
        "<th>|difference|</th></tr>\n";
   s += point_row("P(t ≤ Tmax)", v.p_time, w.p_time, w, 0);
   s += point_row("P(every r ≤ Rmax)", v.p_radius, w.p_radius, w, 1);
   s += point_row("P(both) = P(success)", v.p_joint, w.p_joint, w, 2);
-  s += "</table>\n<p>Threshold " + shortest(v.threshold) + "; the verification's decision: <b>" +
+  s += "</table>\n<p>Threshold " + format_general(v.threshold) + "; the verification's decision: <b>" +
        html_escape(v.decision.value_or("?")) + "</b>; the validation's P(success) " +
-       (w.p_joint >= w.threshold ? "meets" : "is below") + " its threshold " + shortest(w.threshold) + ".</p>\n";
+       (w.p_joint >= w.threshold ? "meets" : "is below") + " its threshold " + format_general(w.threshold) + ".</p>\n";
 
   s += "<h2>Verification error over the grid</h2>\n<p>Grid: Tmax " + axis_text(v.tmax, "s") + ", Rmax " +
        axis_text(v.rmax, "m") + ". Regions by the verification's probability: unsuccessful below " +
-       shortest(in.thresholds.low) + ", successful at or above " + shortest(in.thresholds.high) +
+       format_general(in.thresholds.low) + ", successful at or above " + format_general(in.thresholds.high) +
        ", uncertain between. “Within CI”: points where the verification lies inside the validation's 95 % "
        "interval.</p>\n";
   s += "<table>\n<tr><th>over</th><th>max |error|</th><th>where</th><th>verify / validate there</th><th>bound</th>"

@@ -12,6 +12,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "p3at/common/number_format.hpp"
+
 extern char** environ;
 
 namespace p3at::vipars::report {
@@ -27,19 +29,6 @@ constexpr const char* kRegionLabel[3] = {"High confidence\n(unsuccessful)", "Unc
                                          "High confidence\n(successful)"};
 // One colour per slice (Figs. 12 and 13); slices beyond these reuse them.
 constexpr const char* kSliceColours[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#a6761d"};
-
-std::string fixed(double value, int decimals) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, value);
-  return buf;
-}
-
-/// A number short enough for a label: as few digits as it needs, up to 6 significant.
-std::string shortest(double value) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.6g", value);
-  return buf;
-}
 
 std::string q(const std::string& text) { return gnuplot_quote(text); }
 
@@ -92,7 +81,7 @@ std::string mark_max(double x, const ErrorSummary& e, double axis_mid, const std
   return "set arrow " + std::to_string(tag) + " from " + exact(x) + ", " + exact(e.verify) + " to " + exact(x) + ", " +
          exact(e.validate) + " nohead front linecolor rgb \"black\" linewidth 3\n" + "set label " +
          std::to_string(tag) + " " +
-         q("max |verify − validate| = " + fixed(e.max, 3) + "\nat " + shortest(x) + " " + unit) + " at " + exact(x) +
+         q("max |verify − validate| = " + format_fixed(e.max, 3) + "\nat " + format_general(x) + " " + unit) + " at " + exact(x) +
          ", " + exact((e.verify + e.validate) / 2) + (right_half ? " right offset -1,0" : " left offset 1,0") +
          " front\n";
 }
@@ -176,7 +165,7 @@ FigureScript slices_figure(const PlotInputs& in, bool over_tmax) {
     const std::string colour = q(kSliceColours[k % std::size(kSliceColours)]);
     const std::string set = " index " + std::to_string(k);
     const std::string label =
-        over_tmax ? "Rmax " + shortest(v.rmax[idx[k]]) + " m" : "Tmax " + shortest(v.tmax[idx[k]]) + " s";
+        over_tmax ? "Rmax " + format_general(v.rmax[idx[k]]) + " m" : "Tmax " + format_general(v.tmax[idx[k]]) + " s";
     plot += "     " + file + set + " using 1:4:5 with filledcurves fillcolor rgb " + colour +
             " fillstyle transparent solid 0.15 noborder notitle, \\\n";
     plot += "     " + file + set + " using 1:3 with points pointtype 7 pointsize 0.5 linecolor rgb " + colour +
@@ -200,11 +189,11 @@ FigureScript error_figure(const PlotInputs& in) {
       "\nset xlabel \"Tmax (s)\"\nset ylabel \"Rmax (m)\"\nset cblabel \"|verify − validate|\"\n" +
       "set autoscale xfix\nset autoscale yfix\nset tics out\nset cbrange [0:" + exact(top) + "]\n" +
       "set rmargin at screen 0.8\nset colorbox user origin screen 0.83, screen 0.15 size screen 0.02, screen 0.7\n" +
-      "set cbtics add (" + q("limit " + shortest(e.limit)) + " " + exact(e.limit) + ")\n" +
+      "set cbtics add (" + q("limit " + format_general(e.limit)) + " " + exact(e.limit) + ")\n" +
       "set palette defined (0 \"white\", 0.3 \"#fee08b\", 0.65 \"#f46d43\", 1 \"#67001f\")\n";
   if (e.at_tmax_s && e.at_rmax_m) {
     setup += "set label 1 " +
-             q("max " + fixed(e.max, 3) + " at " + shortest(*e.at_tmax_s) + " s, " + shortest(*e.at_rmax_m) + " m") +
+             q("max " + format_fixed(e.max, 3) + " at " + format_general(*e.at_tmax_s) + " s, " + format_general(*e.at_rmax_m) + " m") +
              " at " + exact(*e.at_tmax_s) + ", " + exact(*e.at_rmax_m) +
              " point pointtype 6 pointsize 3 linecolor rgb \"black\" offset 1.5,1.5 front\n";
   }
@@ -236,14 +225,14 @@ std::vector<FigureScript> figure_scripts(const PlotInputs& in) {
       in,
       {"fig09_time", "Fig. 9: P(t ≤ Tmax) against Tmax, verification against validation, with the three regions.",
        in.title + ": verification vs. validation of the time criterion", "Tmax (s)", "P(t ≤ Tmax)", "s",
-       "criterion " + shortest(v.tmax_s) + " s", &v.tmax, &v.p_time_curve, in.comparison.time.at_tmax_s, v.tmax_s},
+       "criterion " + format_general(v.tmax_s) + " s", &v.tmax, &v.p_time_curve, in.comparison.time.at_tmax_s, v.tmax_s},
       in.comparison.time));
   out.push_back(
       curve_figure(in,
                    {"fig10_radius",
                     "Fig. 10: P(every r ≤ Rmax) against Rmax, verification against validation, with the three regions.",
                     in.title + ": verification vs. validation of the spatial criterion", "Rmax (m)",
-                    "P(every robot's r ≤ Rmax)", "m", "criterion " + shortest(v.rmax_m) + " m", &v.rmax,
+                    "P(every robot's r ≤ Rmax)", "m", "criterion " + format_general(v.rmax_m) + " m", &v.rmax,
                     &v.p_radius_curve, in.comparison.radius.at_rmax_m, v.rmax_m},
                    in.comparison.radius));
   out.push_back(surfaces_figure(in));

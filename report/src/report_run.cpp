@@ -8,7 +8,8 @@
 #include <tuple>
 #include <vector>
 
-#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/common/number_format.hpp"
+#include "p3at/mission/loader.hpp"
 #include "p3at/sim/world_config.hpp"
 #include "p3at/team_sim/campaign.hpp"
 #include "p3at/team_sim/empirical.hpp"
@@ -28,19 +29,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// A flag's value as typed: as few digits as it needs (15 significant).
-std::string number(double value) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.15g", value);
-  return buf;
-}
-
-std::string fixed(double value, int decimals) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, value);
-  return buf;
-}
-
 /// The stand-alone commands giving the same documents (both are deterministic).
 std::string standalone(const RunRequest& r, bool verify) {
   std::vector<std::string> words{"vipars", verify ? "verify" : "validate", r.mission_file};
@@ -48,12 +36,12 @@ std::string standalone(const RunRequest& r, bool verify) {
     words.insert(words.end(), {"--models", r.models_file});
   } else {
     words.insert(words.end(), {"--world", r.world_file, "--trials", std::to_string(r.trials), "--seed",
-                               std::to_string(r.seed), "--timeout", number(r.timeout_s)});
+                               std::to_string(r.seed), "--timeout", format_general(r.timeout_s, 15)});
   }
-  if (r.tmax_s) words.insert(words.end(), {"--tmax", number(*r.tmax_s)});
-  if (r.rmax_m) words.insert(words.end(), {"--rmax", number(*r.rmax_m)});
+  if (r.tmax_s) words.insert(words.end(), {"--tmax", format_general(*r.tmax_s, 15)});
+  if (r.rmax_m) words.insert(words.end(), {"--rmax", format_general(*r.rmax_m, 15)});
   words.insert(words.end(), {"--tmax-range", r.tmax_range, "--rmax-range", r.rmax_range, "--region-low",
-                             number(r.thresholds.low), "--region-high", number(r.thresholds.high), "--json"});
+                             format_general(r.thresholds.low, 15), "--region-high", format_general(r.thresholds.high, 15), "--json"});
   return shell_join(words);
 }
 
@@ -100,7 +88,7 @@ Result<RunOutput> run_verify_and_validate(const RunRequest& r,
   Result<verifier::VerifyResult> verified = verifier::verify(*mission, *models, options);
   out.verify_wall_s = seconds_since(v0);
   if (!verified) return verified.error();
-  say("verified in " + fixed(out.verify_wall_s, 3) + " s: P(success) " + fixed(verified->p_joint, 4));
+  say("verified in " + format_fixed(out.verify_wall_s, 3) + " s: P(success) " + format_fixed(verified->p_joint, 4));
   nlohmann::json vj = verify_json(*mission, *verified);
   vj["command"] = standalone(r, true);
   out.verification = Json::parse(vj.dump());  // into the ordered type the caller holds
@@ -123,7 +111,7 @@ Result<RunOutput> run_verify_and_validate(const RunRequest& r,
       last_tenth = tenth;
       const double s = seconds_since(w0);
       say("  " + std::to_string(done) + "/" + std::to_string(total) + " runs, " +
-          fixed(s > 0 ? static_cast<double>(done) / s : 0.0, 1) + " runs/s");
+          format_fixed(s > 0 ? static_cast<double>(done) / s : 0.0, 1) + " runs/s");
     });
   } catch (const std::exception& e) {
     return make_error(Error::Code::invalid_argument, e.what());
@@ -133,9 +121,9 @@ Result<RunOutput> run_verify_and_validate(const RunRequest& r,
   const double rmax = r.rmax_m.value_or(mission->criteria.rmax_m);
   const team_sim::EmpiricalPoint point = team_sim::empirical_at(runs, tmax, rmax);
   const team_sim::EmpiricalGrid grid = team_sim::empirical_grid(runs, tmax_axis, rmax_axis);
-  say("validated in " + fixed(out.validate_wall_s, 1) + " s (" +
-      fixed(static_cast<double>(r.trials) / std::max(out.validate_wall_s, 1e-9), 1) + " runs/s), " +
-      std::to_string(point.failed_runs) + " failed: P(success) " + fixed(point.joint.p, 4));
+  say("validated in " + format_fixed(out.validate_wall_s, 1) + " s (" +
+      format_fixed(static_cast<double>(r.trials) / std::max(out.validate_wall_s, 1e-9), 1) + " runs/s), " +
+      std::to_string(point.failed_runs) + " failed: P(success) " + format_fixed(point.joint.p, 4));
   ValidationSummary summary;
   summary.mission_name = mission->name;
   summary.threshold = mission->criteria.threshold;

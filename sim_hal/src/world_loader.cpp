@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "p3at/common/yaml_document.hpp"
 #include "p3at/sim/p3at_model.hpp"
 #include "p3at/sim/world_config.hpp"
 
@@ -24,14 +25,16 @@ class Loader {
   explicit Loader(std::string source) : source_(std::move(source)) {}
 
   WorldConfig load(const std::string& text) {
+    // The one safe reader every YAML input shares (common/yaml): malformed
+    // YAML, a second document or yaml-cpp 0.7's endless loop on a stray ','
+    // become "file:line:column: malformed YAML: ...".
+    const std::string empty = "empty world file: expected a mapping with 'robots' (and optional 'walls')";
     YAML::Node root;
     try {
-      root = YAML::Load(text);
-    } catch (const YAML::ParserException& e) {
-      throw WorldFileError(at(e.mark) + ": invalid YAML: " + e.msg);
-    }
-    if (!root.IsDefined() || root.IsNull()) {
-      throw WorldFileError(source_ + ": empty world file: expected a mapping with 'robots' (and optional 'walls')");
+      root = yaml_document::load_single(text, empty);
+    } catch (const yaml_document::Problem& problem) {
+      if (problem.detail == empty) throw WorldFileError(source_ + ": " + empty);
+      throw WorldFileError(at(problem.mark) + ": " + problem.detail);
     }
     expect_map(root, "the world file");
     check_keys(root, {"walls", "robots", "defaults", "seed", "radio"}, "the world file");

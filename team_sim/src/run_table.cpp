@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "p3at/common/number_format.hpp"
+
 namespace p3at::team_sim {
 namespace {
 
@@ -17,12 +19,6 @@ std::string quote_csv(const std::string& text) {
   return out + "\"";
 }
 
-std::string fixed(double value, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, value);
-  return buf;
-}
-
 }  // namespace
 
 std::string csv_header(const mission::Mission& mission) {
@@ -33,9 +29,9 @@ std::string csv_header(const mission::Mission& mission) {
 
 std::string csv_row(const RunResult& run) {
   std::string row = std::to_string(run.run) + "," + std::to_string(run.seed) + "," + quote_csv(run.outcome) + "," +
-                    fixed(run.time_s, 2);
-  for (const auto& r : run.robots) row += "," + fixed(r.dist_to_goal_m, 4);
-  return row + "," + fixed(run.closest_approach_m, 4);
+                    format_fixed(run.time_s, 2);
+  for (const auto& r : run.robots) row += "," + format_fixed(r.dist_to_goal_m, 4);
+  return row + "," + format_fixed(run.closest_approach_m, 4);
 }
 
 Summary summarize(const std::vector<RunResult>& runs) {

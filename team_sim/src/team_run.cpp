@@ -8,7 +8,7 @@
 
 #include "p3at/common/log.hpp"
 #include "p3at/executive/robot_executive.hpp"
-#include "p3at/hal/team_key.hpp"
+#include "p3at/team_link/team_key.hpp"
 #include "p3at/sim/radio.hpp"
 #include "p3at/sim/sim_drive_base.hpp"
 #include "p3at/sim/world.hpp"

@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "p3at/protocols/mission/loader.hpp"
-#include "p3at/protocols/mission/printer.hpp"
+#include "p3at/mission/loader.hpp"
+#include "p3at/mission/printer.hpp"
 
 namespace {
 

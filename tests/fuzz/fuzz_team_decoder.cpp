@@ -12,8 +12,8 @@
 #include <span>
 #include <vector>
 
-#include "p3at/hal/team_protocol.hpp"
-#include "p3at/hal/team_wire.hpp"
+#include "p3at/team_link/team_protocol.hpp"
+#include "p3at/team_link/team_wire.hpp"
 
 namespace {
 

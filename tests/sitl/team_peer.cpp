@@ -34,7 +34,7 @@
 
 #include "p3at/hal/clock.hpp"
 #include "p3at/hal/lcm_team_link.hpp"
-#include "p3at/hal/team_key.hpp"
+#include "p3at/team_link/team_key.hpp"
 #include "p3at/hal/url.hpp"
 
 namespace {
@@ -99,14 +99,14 @@ int run(const RunOptions& o) {
               p3at::hal::team_key_fingerprint(key.value()).c_str());
   std::fflush(stdout);
 
-  std::optional<p3at::hal::GateVerdict> verdict;
+  std::optional<p3at::gate::GateVerdict> verdict;
   if (!o.verdict.empty()) {
-    const auto decision = p3at::hal::gate_decision_from_string(o.verdict);
+    const auto decision = p3at::gate::gate_decision_from_string(o.verdict);
     if (!decision) {
       std::fprintf(stderr, "team_peer: --verdict must be GO, NO-GO or OVERRIDE\n");
       return 1;
     }
-    verdict = p3at::hal::GateVerdict{o.name, o.hash, *decision, 0.99, 0.99, 0.99, 0.8, 60.0, 0.5, "team_peer"};
+    verdict = p3at::gate::GateVerdict{o.name, o.hash, *decision, 0.99, 0.99, 0.99, 0.8, 60.0, 0.5, "team_peer"};
   }
 
   p3at::hal::SteadyClock clock;

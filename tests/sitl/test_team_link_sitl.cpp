@@ -21,8 +21,8 @@
 #include <vector>
 
 #include "child_process.hpp"
-#include "p3at/hal/team_key.hpp"
-#include "p3at/hal/team_wire.hpp"
+#include "p3at/team_link/team_key.hpp"
+#include "p3at/team_link/team_wire.hpp"
 
 using namespace p3at;
 using test::ChildProcess;

@@ -1,5 +1,5 @@
 #pragma once
-// An in-process hal::TeamLink for unit tests. Links joined with connect() form
+// An in-process hal::TeamLink (and gate::VerdictLink) for unit tests. Links joined with connect() form
 // a perfect radio: notify() puts the notification in each recipient's inbox,
 // the recipient's next poll() delivers it and (with auto_ack) acknowledges it
 // to the sender at once; publish_status() updates every peer's
@@ -17,10 +17,11 @@
 
 #include "p3at/common/result.hpp"
 #include "p3at/hal/team_link.hpp"
+#include "p3at/launch_gate/gate_verdict.hpp"
 
 namespace p3at::test {
 
-class FakeTeamLink final : public hal::TeamLink {
+class FakeTeamLink final : public gate::VerdictLink {
  public:
   struct NotifyCall {
     std::string message;
@@ -78,15 +79,15 @@ class FakeTeamLink final : public hal::TeamLink {
     return {};
   }
   const std::vector<hal::TeamStatus>& teammate_status() const override { return teammates_; }
-  Status publish_verdict(const hal::GateVerdict& verdict) override {
+  Status publish_verdict(const gate::GateVerdict& verdict) override {
     if (fail_publish_verdict) return make_error(Error::Code::io, "fake team link: verdict refused by the test");
     verdicts_sent.push_back(verdict);
-    hal::GateVerdict stamped = verdict;
+    gate::GateVerdict stamped = verdict;
     stamped.robot = self_;
     for (FakeTeamLink* peer : peers_) peer->set_teammate_verdict(stamped);
     return {};
   }
-  const std::vector<hal::GateVerdict>& teammate_verdicts() const override { return verdicts_; }
+  const std::vector<gate::GateVerdict>& teammate_verdicts() const override { return verdicts_; }
   const std::vector<hal::Telemetry>& teammate_telemetry() const override { return telemetry_; }
   const hal::TeamLinkStats& stats() const override { return stats_; }
 
@@ -108,7 +109,7 @@ class FakeTeamLink final : public hal::TeamLink {
   /// Replaces (or adds) a teammate's latest status.
   void set_teammate_status(const hal::TeamStatus& status) { replace_or_add(teammates_, status); }
   /// Replaces (or adds) a teammate's latest gate verdict.
-  void set_teammate_verdict(const hal::GateVerdict& verdict) { replace_or_add(verdicts_, verdict); }
+  void set_teammate_verdict(const gate::GateVerdict& verdict) { replace_or_add(verdicts_, verdict); }
   /// Replaces (or adds) a teammate's latest telemetry.
   void set_teammate_telemetry(const hal::Telemetry& telemetry) { replace_or_add(telemetry_, telemetry); }
   const std::string& self() const { return self_; }
@@ -122,7 +123,7 @@ class FakeTeamLink final : public hal::TeamLink {
   std::vector<NotifyCall> notify_calls;
   std::vector<hal::Telemetry> telemetry_sent;
   std::vector<hal::TeamStatus> status_sent;
-  std::vector<hal::GateVerdict> verdicts_sent;
+  std::vector<gate::GateVerdict> verdicts_sent;
 
  private:
   struct Incoming {
@@ -145,7 +146,7 @@ class FakeTeamLink final : public hal::TeamLink {
   std::vector<Incoming> inbox_;
   std::map<std::uint64_t, std::vector<std::string>> waiting_;
   std::vector<hal::TeamStatus> teammates_;
-  std::vector<hal::GateVerdict> verdicts_;
+  std::vector<gate::GateVerdict> verdicts_;
   std::vector<hal::Telemetry> telemetry_;
   std::uint64_t next_seq_ = 1;
   hal::TeamLinkStats stats_;

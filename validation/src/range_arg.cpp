@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "p3at/common/number_format.hpp"
+
 namespace p3at::vipars {
 namespace {
 
@@ -28,11 +30,7 @@ bool parse_number(std::string_view field, double& value) {
 // Nearest double to the value's 15-significant-digit decimal: undoes the
 // last-bit rounding of A + k·STEP (1.7000000000000002 -> 1.7) without
 // changing any value a person could have meant.
-double tidy(double value) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.15g", value);
-  return std::strtod(buf, nullptr);
-}
+double tidy(double value) { return std::strtod(format_general(value, 15).c_str(), nullptr); }
 
 }  // namespace
 

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "p3at/common/vipars_exit.hpp"
-#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/mission/loader.hpp"
 #include "p3at/sim/world_config.hpp"
 #include "p3at/validation/simulate.hpp"
 #include "p3at/team_sim/run_table.hpp"

@@ -25,8 +25,9 @@
 #include <utility>
 #include <vector>
 
+#include "p3at/common/number_format.hpp"
 #include "p3at/common/vipars_exit.hpp"
-#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/mission/loader.hpp"
 #include "p3at/validation/validate.hpp"
 #include "p3at/sim/world_config.hpp"
 #include "p3at/team_sim/campaign.hpp"
@@ -154,12 +155,6 @@ Json report_to_json(const Report& r, const ValidateOptions& o) {
 
 // ---- text ----
 
-std::string number(double value) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", value);
-  return buf;
-}
-
 void print_estimate(const std::string& label, const team_sim::Estimate& e) {
   std::printf("  %-28s %.3f  [%.3f, %.3f]  (%llu/%llu)\n", label.c_str(), e.p, e.ci_low, e.ci_high,
               static_cast<unsigned long long>(e.count), static_cast<unsigned long long>(e.runs));
@@ -168,10 +163,10 @@ void print_estimate(const std::string& label, const team_sim::Estimate& e) {
 void print_grid(const team_sim::EmpiricalGrid& g, const ValidateOptions& o) {
   std::printf("\nP(t <= tmax and every r <= rmax): rows tmax (s), columns rmax (m)\n");
   std::printf("%8s %5s |", "tmax", "P(t)");
-  for (double r : g.rmax) std::printf(" %5s", number(r).c_str());
+  for (double r : g.rmax) std::printf(" %5s", format_general(r).c_str());
   std::printf("\n");
   for (std::size_t a = 0; a < g.tmax.size(); ++a) {
-    std::printf("%8s %5.2f |", number(g.tmax[a]).c_str(), g.time[a].p);
+    std::printf("%8s %5.2f |", format_general(g.tmax[a]).c_str(), g.time[a].p);
     for (const auto& e : g.joint[a]) std::printf(" %5.2f", e.p);
     std::printf("\n");
   }
@@ -179,10 +174,10 @@ void print_grid(const team_sim::EmpiricalGrid& g, const ValidateOptions& o) {
   for (const auto& e : g.radius) std::printf(" %5.2f", e.p);
   std::printf("\n\nregions, columns rmax %s .. %s m as above: '-' unsuccessful (P < %g), '?' uncertain, "
               "'+' successful (P >= %g)\n",
-              g.rmax.empty() ? "" : number(g.rmax.front()).c_str(), g.rmax.empty() ? "" : number(g.rmax.back()).c_str(),
+              g.rmax.empty() ? "" : format_general(g.rmax.front()).c_str(), g.rmax.empty() ? "" : format_general(g.rmax.back()).c_str(),
               o.region_low, o.region_high);
   for (std::size_t a = 0; a < g.tmax.size(); ++a) {
-    std::printf("%8s  ", number(g.tmax[a]).c_str());
+    std::printf("%8s  ", format_general(g.tmax[a]).c_str());
     for (const auto& e : g.joint[a]) {
       switch (team_sim::classify(e.p, o.region_low, o.region_high)) {
         case team_sim::Region::unsuccessful: std::printf("-"); break;
@@ -202,13 +197,13 @@ void print_text(const Report& r, const ValidateOptions& o) {
   for (const auto& [outcome, count] : r.failures) {
     std::printf("  %llu x %s\n", static_cast<unsigned long long>(count), outcome.c_str());
   }
-  std::printf("criteria: tmax %s s, rmax %s m, threshold %s\n", number(p.tmax_s).c_str(), number(p.rmax_m).c_str(),
-              number(r.threshold).c_str());
+  std::printf("criteria: tmax %s s, rmax %s m, threshold %s\n", format_general(p.tmax_s).c_str(), format_general(p.rmax_m).c_str(),
+              format_general(r.threshold).c_str());
   std::printf("\n  %-28s %-5s  %-14s  %s\n", "probability", "p", "95% Wilson CI", "(runs)");
-  print_estimate("P(t <= " + number(p.tmax_s) + " s)", p.time);
-  print_estimate("P(every r <= " + number(p.rmax_m) + " m)", p.radius);
+  print_estimate("P(t <= " + format_general(p.tmax_s) + " s)", p.time);
+  print_estimate("P(every r <= " + format_general(p.rmax_m) + " m)", p.radius);
   print_estimate("P(both) = P(success)", p.joint);
-  for (const auto& robot : p.robots) print_estimate("P(" + robot.name + " r <= " + number(p.rmax_m) + " m)", robot.radius);
+  for (const auto& robot : p.robots) print_estimate("P(" + robot.name + " r <= " + format_general(p.rmax_m) + " m)", robot.radius);
   std::printf("\n");
   if (p.completion_mean_s) {
     std::printf("completion time (successful runs): mean %.1f s, sd %.1f s\n", *p.completion_mean_s,
@@ -219,7 +214,7 @@ void print_text(const Report& r, const ValidateOptions& o) {
                 robot.dist_sd_m);
   }
   std::printf("P(success) %s the threshold %s\n", p.joint.p >= r.threshold ? "meets" : "is below",
-              number(r.threshold).c_str());
+              format_general(r.threshold).c_str());
   if (r.grid) print_grid(*r.grid, o);
 }
 

@@ -3,21 +3,10 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "p3at/common/number_format.hpp"
+
 namespace p3at::vipars {
 namespace {
-
-/// `v` with `decimals` digits after the point, right-aligned in `width` columns.
-std::string fixed(double v, int decimals, int width = 0) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%*.*f", width, decimals, v);
-  return buf;
-}
-
-std::string scientific(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.2e", v);
-  return buf;
-}
 
 // At most this many rows/columns in the text table; larger grids are shown
 // every k-th value (the JSON always has all of them).
@@ -85,25 +74,25 @@ nlohmann::json verify_json(const mission::Mission& mission, const verifier::Veri
 
 std::string verify_text(const mission::Mission& mission, const verifier::VerifyResult& r) {
   std::string s;
-  s += "mission " + mission.name + ": Tmax " + fixed(r.tmax_s, 1) + " s, Rmax " + fixed(r.rmax_m, 2) +
-       " m, threshold " + fixed(r.threshold, 3) + "\n";
-  s += "  P(t <= Tmax)                 " + fixed(r.p_time, 4) + "   (completion " +
-       fixed(r.completion_mean_s, 1) + " ± " + fixed(r.completion_sd_s, 1) + " s)\n";
-  s += "  P(every r_i <= Rmax)         " + fixed(r.p_radius, 4) + "\n";
-  s += "  P(t <= Tmax and r_i <= Rmax) " + fixed(r.p_joint, 4) + "\n";
+  s += "mission " + mission.name + ": Tmax " + format_fixed(r.tmax_s, 1) + " s, Rmax " + format_fixed(r.rmax_m, 2) +
+       " m, threshold " + format_fixed(r.threshold, 3) + "\n";
+  s += "  P(t <= Tmax)                 " + format_fixed(r.p_time, 4) + "   (completion " +
+       format_fixed(r.completion_mean_s, 1) + " ± " + format_fixed(r.completion_sd_s, 1) + " s)\n";
+  s += "  P(every r_i <= Rmax)         " + format_fixed(r.p_radius, 4) + "\n";
+  s += "  P(t <= Tmax and r_i <= Rmax) " + format_fixed(r.p_joint, 4) + "\n";
   for (const verifier::RobotPrediction& p : r.robots) {
-    s += "  " + p.name + ": done at " + fixed(p.finish_mean_s, 1) + " ± " + fixed(p.finish_sd_s, 1) +
-         " s, ends near (" + fixed(p.final_x_m, 2) + ", " + fixed(p.final_y_m, 2) + ") ± " +
-         fixed(p.final_sd_m, 2) + " m, " + fixed(p.dist_mean_m, 2) + " m from its goal, P(r <= Rmax) " +
-         fixed(p.p_radius, 4) + "\n";
+    s += "  " + p.name + ": done at " + format_fixed(p.finish_mean_s, 1) + " ± " + format_fixed(p.finish_sd_s, 1) +
+         " s, ends near (" + format_fixed(p.final_x_m, 2) + ", " + format_fixed(p.final_y_m, 2) + ") ± " +
+         format_fixed(p.final_sd_m, 2) + " m, " + format_fixed(p.dist_mean_m, 2) + " m from its goal, P(r <= Rmax) " +
+         format_fixed(p.p_radius, 4) + "\n";
   }
   for (const verifier::CriterionVerdict& c : r.criteria) {
-    s += "  criterion " + c.name + ": P = " + fixed(c.probability, 4) + ", required " +
-         fixed(c.required, 3) + (c.holds ? " (holds)" : " (FAILS)") + "\n";
+    s += "  criterion " + c.name + ": P = " + format_fixed(c.probability, 4) + ", required " +
+         format_fixed(c.required, 3) + (c.holds ? " (holds)" : " (FAILS)") + "\n";
   }
   if (r.pruned_mass > 0.0 || r.blocked_mass > 0.0) {
-    s += "  probability mass pruned " + scientific(r.pruned_mass) + ", blocked (never finishes) " +
-         scientific(r.blocked_mass) + "\n";
+    s += "  probability mass pruned " + format_scientific(r.pruned_mass, 2) + ", blocked (never finishes) " +
+         format_scientific(r.blocked_mass, 2) + "\n";
   }
   s += "  " + std::to_string(r.subsystems) + " subsystems evaluated, " + std::to_string(r.branches) +
        " ordering branch(es)\n";
@@ -112,11 +101,11 @@ std::string verify_text(const mission::Mission& mission, const verifier::VerifyR
     s += "\n  P(t <= Tmax and r_i <= Rmax): rows Tmax (s), columns Rmax (m)\n  Tmax\\Rmax";
     const auto cols = shown(g.rmax.size(), kMaxTableColumns);
     const auto rows = shown(g.tmax.size(), kMaxTableRows);
-    for (const std::size_t c : cols) s += fixed(g.rmax[c], 2, 7);
+    for (const std::size_t c : cols) s += format_fixed(g.rmax[c], 2, 7);
     s += "\n";
     for (const std::size_t row : rows) {
-      s += "  " + fixed(g.tmax[row], 1, 9);
-      for (const std::size_t c : cols) s += fixed(g.p_joint[row][c], 3, 7);
+      s += "  " + format_fixed(g.tmax[row], 1, 9);
+      for (const std::size_t c : cols) s += format_fixed(g.p_joint[row][c], 3, 7);
       s += "\n";
     }
   }

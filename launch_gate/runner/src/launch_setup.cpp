@@ -3,7 +3,7 @@
 #include <utility>
 
 #include "p3at/hal/lcm_team_link.hpp"
-#include "p3at/hal/team_protocol.hpp"
+#include "p3at/team_link/team_protocol.hpp"
 
 namespace p3at::mission_exec {
 
@@ -29,7 +29,7 @@ Result<hal::TeamKey> load_key(const std::optional<std::string>& flag_path, const
   return hal::load_team_key(path);
 }
 
-Result<std::unique_ptr<hal::TeamLink>> open_team_link(const mission::Mission& mission, std::size_t robot_index,
+Result<std::unique_ptr<gate::VerdictLink>> open_team_link(const mission::Mission& mission, std::size_t robot_index,
                                                       const std::string& lcm_url, const hal::TeamKey& key) {
   hal::TeamLinkConfig config;
   config.mission_id = mission.name;

@@ -10,9 +10,10 @@
 #include <string>
 
 #include "p3at/common/result.hpp"
-#include "p3at/hal/team_key.hpp"
+#include "p3at/team_link/team_key.hpp"
 #include "p3at/hal/team_link.hpp"
-#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/launch_gate/gate_verdict.hpp"
+#include "p3at/mission/mission.hpp"
 
 namespace p3at::mission_exec {
 
@@ -25,7 +26,7 @@ Result<hal::TeamKey> load_key(const std::optional<std::string>& flag_path, const
 
 /// Opens the LCM team link for `robot_index`: roster = the mission's robots,
 /// mission id = the mission's name.
-Result<std::unique_ptr<hal::TeamLink>> open_team_link(const mission::Mission& mission, std::size_t robot_index,
+Result<std::unique_ptr<gate::VerdictLink>> open_team_link(const mission::Mission& mission, std::size_t robot_index,
                                                       const std::string& lcm_url, const hal::TeamKey& key);
 
 }  // namespace p3at::mission_exec

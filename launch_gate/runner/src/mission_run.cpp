@@ -144,7 +144,7 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
     std::fprintf(stderr, "mission_exec: cannot open the team link: %s\n", team_link.error().message.c_str());
     return kExitAborted;
   }
-  p3at::hal::TeamLink& inner_link = **team_link;
+  gate::VerdictLink& inner_link = **team_link;
   gate::GateTeamLink link(inner_link, clock);
 
   // ---- the drive base: the ARCOS client on serial or TCP
@@ -178,7 +178,7 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
                               gate::verifier_source());
   gate::InMissionMonitor monitor(mission, *robot_index, mission.criteria, reverifier, link);
 
-  p3at::hal::GateVerdict own = gate::make_verdict(report, opt.override_gate);
+  p3at::gate::GateVerdict own = gate::make_verdict(report, opt.override_gate);
   own.robot = spec.name;
 
   p3at::exec::ExecutiveOptions exec_options;
@@ -203,7 +203,7 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
 
   // A robot whose own verdict is NO-GO never even connects: it only tells the team.
   bool connected = false;
-  if (own.decision != p3at::hal::GateDecision::no_go) {
+  if (own.decision != p3at::gate::GateDecision::no_go) {
     p3at::log::info(kLog, "event=connecting robot=" + spec.name + " hal=" + hal_url + " lcm=" + lcm_url +
                               " mission=" + mission.name + " seed=" + std::to_string(opt.seed));
     if (const auto st = robot.connect(); !st) {
@@ -259,7 +259,7 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
     print_team_link_stats(spec.name, inner_link.stats());
     return refusal_status(agreement.state);
   }
-  p3at::log::info(kLog, "event=launch robot=" + spec.name + " decision=" + p3at::hal::to_string(own.decision) +
+  p3at::log::info(kLog, "event=launch robot=" + spec.name + " decision=" + gate::to_string(own.decision) +
                             " p_joint=" + gate::fixed(own.p_joint, 4) + " reason=\"" + agreement.reason + "\"");
   // Teammates still at their gate hear this robot's verdict from the mission's link.
   link.keep_publishing(own, 500'000);

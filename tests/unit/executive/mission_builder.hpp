@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/mission/mission.hpp"
 
 namespace p3at::test {
 

@@ -15,7 +15,7 @@
 #include "mission_builder.hpp"
 #include "p3at/common/log.hpp"
 #include "p3at/executive/robot_executive.hpp"
-#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/mission/loader.hpp"
 
 namespace mission = p3at::mission;
 using doctest::Approx;

@@ -7,8 +7,9 @@
 #include <vector>
 
 #include "mission_builder.hpp"
-#include "p3at/hal/team_key.hpp"
+#include "p3at/team_link/team_key.hpp"
 #include "p3at/hal/team_link.hpp"
+#include "p3at/launch_gate/gate_verdict.hpp"
 #include "p3at/launch_gate/pre_launch_check.hpp"
 #include "p3at/verifier/verify.hpp"
 
@@ -24,9 +25,9 @@ inline hal::TeamKey gate_key(std::uint8_t seed = 1) {
 inline const std::string kHashA = std::string(64, 'a');
 inline const std::string kHashB = std::string(63, 'a') + "b";
 
-inline hal::GateVerdict verdict(const std::string& robot, hal::GateDecision decision, const std::string& hash = kHashA,
+inline gate::GateVerdict verdict(const std::string& robot, gate::GateDecision decision, const std::string& hash = kHashA,
                                 double p_joint = 0.9) {
-  hal::GateVerdict v;
+  gate::GateVerdict v;
   v.robot = robot;
   v.mission_hash = hash;
   v.decision = decision;

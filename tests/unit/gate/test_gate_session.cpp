@@ -13,7 +13,7 @@
 
 using namespace p3at;
 using gate::AgreementState;
-using hal::GateDecision;
+using gate::GateDecision;
 
 namespace {
 const std::vector<std::string> kTeam{"robot1", "robot2"};

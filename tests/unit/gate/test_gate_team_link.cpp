@@ -3,6 +3,8 @@
 // republished, status stamped with the re-verified probability and note.
 #include <doctest/doctest.h>
 
+#include <type_traits>
+
 #include "fake_clock.hpp"
 #include "fake_team_link.hpp"
 #include "gate_test_util.hpp"
@@ -38,7 +40,7 @@ TEST_CASE("the verdict is republished every interval of link time once kept") {
   std::vector<hal::TeamNotification> got;
   REQUIRE(link.poll(0, got).ok());
   CHECK(inner.verdicts_sent.empty());
-  link.keep_publishing(test::verdict("robot1", hal::GateDecision::go), 500'000);
+  link.keep_publishing(test::verdict("robot1", gate::GateDecision::go), 500'000);
   for (int i = 0; i < 21; ++i) {  // 0 .. 2.0 s in 100 ms steps
     REQUIRE(link.poll(0, got).ok());
     wall.advance_us(100'000);
@@ -76,8 +78,10 @@ TEST_CASE("everything else is forwarded") {
   std::vector<hal::TeamNotification> got;
   REQUIRE(peer.poll(0, got).ok());  // auto-acknowledges
   CHECK(link.acknowledged(*seq));
-  REQUIRE(peer.publish_verdict(test::verdict("robot2", hal::GateDecision::go)).ok());
-  CHECK(link.teammate_verdicts().size() == 1);
+  // Verdicts are the gate's, on the inner VerdictLink: the executive's link has none.
+  static_assert(!std::is_base_of_v<gate::VerdictLink, gate::GateTeamLink>);
+  REQUIRE(peer.publish_verdict(test::verdict("robot2", gate::GateDecision::go)).ok());
+  CHECK(inner.teammate_verdicts().size() == 1);
   REQUIRE(peer.publish_telemetry(hal::Telemetry{}).ok());
   CHECK(link.teammate_telemetry().size() == 1);
   REQUIRE(peer.publish_status({"robot2", "running", "wait", "", -1.0}).ok());

@@ -13,7 +13,7 @@
 #include "p3at/launch_gate/check_report.hpp"
 #include "p3at/launch_gate/mission_hash.hpp"
 #include "p3at/launch_gate/pre_launch_check.hpp"
-#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/mission/loader.hpp"
 
 using namespace p3at;
 using gate::CheckStatus;
@@ -166,17 +166,17 @@ TEST_CASE("the verdict for the team link: GO, NO-GO with the failed criteria, OV
   scripted.p_joint = 0.42;
   const auto report = gate::pre_launch_check(request(f), scripted.source());
   auto v = gate::make_verdict(report, false);
-  CHECK(v.decision == hal::GateDecision::no_go);
+  CHECK(v.decision == gate::GateDecision::no_go);
   CHECK(v.mission_hash == report.mission_hash);
   CHECK(v.p_joint == doctest::Approx(0.42));
   CHECK(v.threshold == doctest::Approx(0.8));
   CHECK(v.detail.find("scripted") != std::string::npos);
   v = gate::make_verdict(report, true);
-  CHECK(v.decision == hal::GateDecision::override_go);
+  CHECK(v.decision == gate::GateDecision::override_go);
   CHECK(v.detail.find("operator override; the verifier said NO-GO") == 0);
   scripted.p_joint = 0.95;
   v = gate::make_verdict(gate::pre_launch_check(request(f), scripted.source()), false);
-  CHECK(v.decision == hal::GateDecision::go);
+  CHECK(v.decision == gate::GateDecision::go);
   CHECK(v.detail.empty());
 }
 

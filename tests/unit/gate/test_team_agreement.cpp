@@ -7,7 +7,7 @@
 
 using namespace p3at;
 using gate::AgreementState;
-using hal::GateDecision;
+using gate::GateDecision;
 
 namespace {
 const std::vector<std::string> kTeam{"robot1", "robot2", "robot3"};
@@ -59,7 +59,7 @@ TEST_CASE("a teammate with another mission hash: mismatch, before its decision i
 
 TEST_CASE("silence past the timeout refuses and names the silent; not one microsecond before") {
   auto a = make();
-  const std::vector<hal::GateVerdict> only3{test::verdict("robot3", GateDecision::go)};
+  const std::vector<gate::GateVerdict> only3{test::verdict("robot3", GateDecision::go)};
   CHECK(a.update(1'000'000 + kTimeout - 1, only3).state == AgreementState::waiting);
   const auto& d = a.update(1'000'000 + kTimeout, only3);
   CHECK(d.state == AgreementState::silent);

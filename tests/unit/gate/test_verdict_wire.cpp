@@ -16,13 +16,13 @@
 #include "gate_test_util.hpp"
 #include "p3at/hal/clock.hpp"
 #include "p3at/hal/lcm_team_link.hpp"
-#include "p3at/hal/team_protocol.hpp"
-#include "p3at/hal/team_wire.hpp"
+#include "p3at/team_link/team_protocol.hpp"
+#include "p3at/team_link/team_wire.hpp"
 #include "p3at/sim/radio.hpp"
 #include "p3at_lcm/gate_verdict_t.hpp"
 
 using namespace p3at;
-using hal::GateDecision;
+using gate::GateDecision;
 using hal::TeamChannel;
 using hal::TeamDatagram;
 
@@ -63,17 +63,17 @@ void receive(hal::TeamProtocol& p, const TeamDatagram& d) {
 }  // namespace
 
 TEST_CASE("decisions have one wire spelling each, and only those decode") {
-  CHECK(std::string(hal::to_string(GateDecision::go)) == "GO");
-  CHECK(std::string(hal::to_string(GateDecision::no_go)) == "NO-GO");
-  CHECK(std::string(hal::to_string(GateDecision::override_go)) == "OVERRIDE");
+  CHECK(std::string(gate::to_string(GateDecision::go)) == "GO");
+  CHECK(std::string(gate::to_string(GateDecision::no_go)) == "NO-GO");
+  CHECK(std::string(gate::to_string(GateDecision::override_go)) == "OVERRIDE");
   for (const auto d : {GateDecision::go, GateDecision::no_go, GateDecision::override_go}) {
-    CHECK(hal::gate_decision_from_string(hal::to_string(d)) == d);
+    CHECK(gate::gate_decision_from_string(gate::to_string(d)) == d);
   }
-  CHECK_FALSE(hal::gate_decision_from_string("go").has_value());
-  CHECK_FALSE(hal::gate_decision_from_string("").has_value());
-  CHECK(hal::allows_launch(GateDecision::go));
-  CHECK(hal::allows_launch(GateDecision::override_go));
-  CHECK_FALSE(hal::allows_launch(GateDecision::no_go));
+  CHECK_FALSE(gate::gate_decision_from_string("go").has_value());
+  CHECK_FALSE(gate::gate_decision_from_string("").has_value());
+  CHECK(gate::allows_launch(GateDecision::go));
+  CHECK(gate::allows_launch(GateDecision::override_go));
+  CHECK_FALSE(gate::allows_launch(GateDecision::no_go));
   CHECK(hal::channel_name(TeamChannel::gate) == "P3AT_GATE");
   CHECK(hal::channel_from_name("P3AT_GATE") == TeamChannel::gate);
 }

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/mission/loader.hpp"
 
 namespace p3at::mission::test {
 

@@ -8,8 +8,8 @@
 #include <fstream>
 
 #include "fixtures.hpp"
-#include "p3at/protocols/mission/loader.hpp"
-#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/mission/loader.hpp"
+#include "p3at/mission/mission.hpp"
 
 using namespace p3at::mission;
 using p3at::mission::test::kBoundingOverwatch;

@@ -3,7 +3,7 @@
 #include <doctest/doctest.h>
 
 #include "fixtures.hpp"
-#include "p3at/protocols/mission/printer.hpp"
+#include "p3at/mission/printer.hpp"
 
 using namespace p3at::mission;
 using p3at::mission::test::kBoundingOverwatch;

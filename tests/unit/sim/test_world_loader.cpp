@@ -182,8 +182,13 @@ robots:
 
 TEST_CASE("broken YAML, an empty file and a missing file are errors with a position or the path") {
   CHECK(contains(load_error("robots: [\n  - {name: r\n"), "w.yaml:"));
-  CHECK(contains(load_error("robots: [\n  - {name: r\n"), "invalid YAML"));
+  // The shared reader's form (common/yaml's yaml_document), as for missions and models.
+  CHECK(contains(load_error("robots: [\n  - {name: r\n"), ": malformed YAML: "));
   CHECK(contains(load_error(""), "empty world file"));
+  // yaml-cpp 0.7 alone would loop forever on a stray ',' at the top level.
+  CHECK(load_error(",") == "w.yaml:1:1: malformed YAML: unexpected ','");
+  CHECK(contains(load_error("robots: [{name: r, x_m: 0, y_m: 0}]\n---\nrobots: []\n"),
+                 "expected a single YAML document, found a second one"));
   try {
     (void)load_world_file("/nonexistent/world.yaml");
     FAIL("expected an error");

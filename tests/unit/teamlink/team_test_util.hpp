@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "p3at/hal/team_key.hpp"
-#include "p3at/hal/team_protocol.hpp"
+#include "p3at/team_link/team_key.hpp"
+#include "p3at/team_link/team_protocol.hpp"
 
 namespace p3at::test {
 

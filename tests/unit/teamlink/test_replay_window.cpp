@@ -1,7 +1,7 @@
 // The anti-replay window: fresh, duplicate, reordered, too old, big jumps.
 #include <doctest/doctest.h>
 
-#include "p3at/hal/replay_window.hpp"
+#include "p3at/team_link/replay_window.hpp"
 
 using p3at::hal::ReplayWindow;
 using V = ReplayWindow::Verdict;

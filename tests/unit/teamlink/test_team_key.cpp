@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include "p3at/hal/team_key.hpp"
+#include "p3at/team_link/team_key.hpp"
 
 using namespace p3at;
 using hal::TeamKey;

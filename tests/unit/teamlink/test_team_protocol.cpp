@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "p3at/hal/team_protocol.hpp"
-#include "p3at/hal/team_wire.hpp"
+#include "p3at/team_link/team_protocol.hpp"
+#include "p3at/team_link/team_wire.hpp"
 #include "p3at_lcm/notification_t.hpp"
 #include "team_test_util.hpp"
 

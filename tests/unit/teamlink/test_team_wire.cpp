@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "p3at/hal/team_wire.hpp"
+#include "p3at/team_link/team_wire.hpp"
 #include "p3at_lcm/notification_t.hpp"
 #include "team_test_util.hpp"
 

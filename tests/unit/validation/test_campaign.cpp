@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/mission/loader.hpp"
 #include "p3at/sim/world_config.hpp"
 #include "p3at/team_sim/campaign.hpp"
 #include "p3at/team_sim/empirical.hpp"

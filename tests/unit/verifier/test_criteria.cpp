@@ -9,7 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/mission/loader.hpp"
 #include "p3at/verifier/criteria.hpp"
 #include "p3at/verifier/pars/printer.hpp"
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <string>
 
-#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/mission/loader.hpp"
 #include "p3at/verifier/models.hpp"
 #include "p3at/verifier/verify.hpp"
 

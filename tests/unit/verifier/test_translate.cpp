@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/mission/loader.hpp"
 #include "p3at/verifier/pars/abort_condition.hpp"
 #include "p3at/verifier/pars/parser.hpp"
 #include "p3at/verifier/pars/printer.hpp"

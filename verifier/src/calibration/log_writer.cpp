@@ -9,19 +9,13 @@
 #include <string>
 #include <system_error>
 
+#include "p3at/common/number_format.hpp"
 #include "p3at/verifier/calibration.hpp"
 
 namespace p3at::verifier {
 namespace {
 
-std::string number(double value) {
-  std::array<char, 32> buffer{};
-  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  if (ec != std::errc()) return "nan";  // not reachable for a double in 32 characters
-  return std::string(buffer.data(), end);
-}
-
-std::string optional_number(const std::optional<double>& value) { return value ? number(*value) : std::string(); }
+std::string optional_number(const std::optional<double>& value) { return value ? format_shortest(*value) : std::string(); }
 
 }  // namespace
 
@@ -32,10 +26,10 @@ std::string write_calibration_log(const CalibrationLog& log) {
   for (const Manoeuvre& m : log.manoeuvres) {
     const std::string head = m.robot + "," + std::to_string(m.id) + "," + to_string(m.kind) + ",";
     for (const CycleRow& r : m.rows) {
-      out += head + number(r.t_s) + "," + number(r.cmd_trans_mps) + "," + number(r.cmd_rot_radps) + "," +
-             number(r.odom_x_m) + "," + number(r.odom_y_m) + "," + number(r.odom_theta_rad) + ",";
+      out += head + format_shortest(r.t_s) + "," + format_shortest(r.cmd_trans_mps) + "," + format_shortest(r.cmd_rot_radps) + "," +
+             format_shortest(r.odom_x_m) + "," + format_shortest(r.odom_y_m) + "," + format_shortest(r.odom_theta_rad) + ",";
       if (r.truth) {
-        out += number(r.truth->x_m) + "," + number(r.truth->y_m) + "," + number(r.truth->theta_rad);
+        out += format_shortest(r.truth->x_m) + "," + format_shortest(r.truth->y_m) + "," + format_shortest(r.truth->theta_rad);
       } else {
         out += ",,";
       }
@@ -43,7 +37,7 @@ std::string write_calibration_log(const CalibrationLog& log) {
     }
   }
   for (const MessageRow& m : log.messages) {
-    out += m.sender + "," + std::to_string(m.id) + ",message,,,,,,,,,," + number(m.sent_s) + "," +
+    out += m.sender + "," + std::to_string(m.id) + ",message,,,,,,,,,," + format_shortest(m.sent_s) + "," +
            optional_number(m.delivered_s) + "," + optional_number(m.acked_s) + "\n";
   }
   return out;

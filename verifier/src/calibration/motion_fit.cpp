@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "p3at/common/number_format.hpp"
+
 #include "calibration/fit_parts.hpp"
 
 namespace p3at::verifier::calibration_detail {
@@ -80,12 +82,6 @@ double floor_plus_form_log_likelihood(const std::vector<double>& r2, const std::
   return best;
 }
 
-std::string fixed(double v, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
-
 // sd and its standard error from a variance and its standard error.
 void add_sd(std::vector<ParameterFit>& fits, const std::string& name, double var, double var_se, std::size_t runs,
             const std::string& unit, const std::string& note) {
@@ -123,7 +119,7 @@ ScaleFit fit_scale(const std::vector<double>& x, const std::vector<double>& y, c
     const double ll_rel = floor_plus_form_log_likelihood(r2, rel);
     out.relative = ll_rel >= ll_unit;
     out.form_note = std::string(out.relative ? "relative" : "per-unit") + " form: log-likelihood " +
-                    fixed(std::abs(ll_rel - ll_unit), 1) + " above the " + (out.relative ? "per-unit" : "relative") +
+                    format_fixed(std::abs(ll_rel - ll_unit), 1) + " above the " + (out.relative ? "per-unit" : "relative") +
                     " form's over " + std::to_string(cycles.odo.size()) + " single cycles";
   } else if (!per_cycle) {
     out.relative = false;
@@ -143,7 +139,7 @@ ScaleFit fit_scale(const std::vector<double>& x, const std::vector<double>& y, c
       const double ll_rel = log_likelihood(x, y, length_sq, weighted_scale(x, y, length_sq));
       out.relative = ll_rel >= ll_unit;
       out.form_note = std::string(out.relative ? "relative" : "per-unit") + " form: log-likelihood " +
-                      fixed(std::abs(ll_rel - ll_unit), 1) + " above the " + (out.relative ? "per-unit" : "relative") +
+                      format_fixed(std::abs(ll_rel - ll_unit), 1) + " above the " + (out.relative ? "per-unit" : "relative") +
                       " form's";
     }
   }

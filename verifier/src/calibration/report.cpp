@@ -5,16 +5,11 @@
 #include <cstdio>
 #include <string>
 
+#include "p3at/common/number_format.hpp"
 #include "p3at/verifier/calibration.hpp"
 
 namespace p3at::verifier {
 namespace {
-
-std::string number(double v) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 // At least one space after the text, more to reach `width`.
 std::string padded(std::string text, std::size_t width) {
@@ -23,7 +18,7 @@ std::string padded(std::string text, std::size_t width) {
 }
 
 std::string with_unit(double v, const std::string& unit) {
-  return unit.empty() ? number(v) : number(v) + " " + unit;
+  return unit.empty() ? format_general(v) : format_general(v) + " " + unit;
 }
 
 void delay_lines(std::string& out, const char* name, const DelayCalibration& d) {
@@ -37,15 +32,15 @@ void delay_lines(std::string& out, const char* name, const DelayCalibration& d) 
   if (!d.bic.empty()) {
     out += " (BIC for 1..";
     out += std::to_string(d.bic.size()) + ":";
-    for (double b : d.bic) out += " " + number(b);
+    for (double b : d.bic) out += " " + format_general(b);
     out += ")";
   }
-  out += ", KS distance " + number(d.ks_distance) + "\n";
+  out += ", KS distance " + format_general(d.ks_distance) + "\n";
   for (const Component1& c : d.mixture.components) {
-    out += "  weight " + padded(number(c.weight), 10) + " mean " + padded(number(c.mean * 1e3) + " ms", 14) + " sd " +
-           number(std::sqrt(c.var) * 1e3) + " ms\n";
+    out += "  weight " + padded(format_general(c.weight), 10) + " mean " + padded(format_general(c.mean * 1e3) + " ms", 14) + " sd " +
+           format_general(std::sqrt(c.var) * 1e3) + " ms\n";
   }
-  out += "  overall: mean " + number(d.mixture.mean() * 1e3) + " ms, sd " + number(std::sqrt(d.mixture.variance()) * 1e3) +
+  out += "  overall: mean " + format_general(d.mixture.mean() * 1e3) + " ms, sd " + format_general(std::sqrt(d.mixture.variance()) * 1e3) +
          " ms\n";
 }
 
@@ -60,7 +55,7 @@ std::string format_calibration_report(const CalibrationResult& result) {
            padded("resid.rms", 18) + padded("runs", 6) + "note\n";
     for (const ParameterFit& f : r.fits) {
       out += "  " + padded(f.name, 22) + padded(with_unit(f.value, f.unit), 26) +
-             padded(f.std_error >= 0.0 ? number(f.std_error) : "-", 12) +
+             padded(f.std_error >= 0.0 ? format_general(f.std_error) : "-", 12) +
              padded(f.residual_rms >= 0.0 ? with_unit(f.residual_rms, f.residual_unit) : "-", 18) +
              padded(f.runs > 0 ? std::to_string(f.runs) : "-", 6) + f.note + "\n";
     }

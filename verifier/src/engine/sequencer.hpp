@@ -12,7 +12,7 @@
 /// robot's pending exit is a residual duration, so the common history of two
 /// robots is not counted twice when their exits are compared.
 
-#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/mission/mission.hpp"
 #include "p3at/verifier/models.hpp"
 #include "p3at/verifier/outcome.hpp"
 #include "p3at/verifier/verify.hpp"

@@ -16,7 +16,7 @@
 #include "engine/base_motion.hpp"
 #include "engine/error_state.hpp"
 #include "engine/sonar_model.hpp"
-#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/mission/mission.hpp"
 #include "p3at/verifier/mog.hpp"
 #include "p3at/verifier/models.hpp"
 

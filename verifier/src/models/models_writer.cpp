@@ -15,7 +15,7 @@
 namespace p3at::verifier {
 namespace {
 
-using models_detail::format_number;
+using p3at::format_shortest;
 
 // How many doubles either side of the converted value are tried.
 constexpr int kNeighbours = 8;
@@ -30,21 +30,21 @@ template <typename ToFile, typename FromFile>
 std::string in_file_units(double si, std::string_view what, ToFile to_file, FromFile from_file) {
   require_finite(si, what);
   const double guess = to_file(si);
-  if (from_file(guess) == si) return format_number(guess);
+  if (from_file(guess) == si) return format_shortest(guess);
   double up = guess;
   double down = guess;
   for (int i = 0; i < kNeighbours; ++i) {
     up = std::nextafter(up, HUGE_VAL);
     down = std::nextafter(down, -HUGE_VAL);
-    if (from_file(up) == si) return format_number(up);
-    if (from_file(down) == si) return format_number(down);
+    if (from_file(up) == si) return format_shortest(up);
+    if (from_file(down) == si) return format_shortest(down);
   }
-  return format_number(guess);
+  return format_shortest(guess);
 }
 
 std::string plain(double value, std::string_view what) {
   require_finite(value, what);
-  return format_number(value);
+  return format_shortest(value);
 }
 std::string degrees(double radians, std::string_view what) {
   return in_file_units(radians, what, models_detail::radians_to_degrees, models_detail::degrees_to_radians);

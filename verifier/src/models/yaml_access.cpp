@@ -6,17 +6,11 @@
 #include <sstream>
 #include <system_error>
 
-#include "p3at/protocols/yaml_document.hpp"
+#include "p3at/common/yaml_document.hpp"
 #include "p3at/verifier/models.hpp"
 
 namespace p3at::verifier::models_detail {
 namespace {
-
-// A scalar that may be read as a number: plain, or tagged !!int / !!float. A quoted "2" is a string.
-bool may_be_number(const YAML::Node& node) {
-  const std::string& tag = node.Tag();
-  return tag == "?" || tag == "tag:yaml.org,2002:int" || tag == "tag:yaml.org,2002:float";
-}
 
 // YAML allows a leading '+'; from_chars does not.
 std::string_view strip_plus(std::string_view text) {
@@ -41,11 +35,6 @@ std::string_view last_part(std::string_view label) {
 
 }  // namespace
 
-void Source::fail(const YAML::Mark& mark, std::string detail) const {
-  if (mark.is_null()) throw ModelsError(name_, 0, 0, std::move(detail));
-  throw ModelsError(name_, mark.line + 1, mark.column + 1, std::move(detail));
-}
-
 YAML::Node load_document(const Source& src, std::string_view text, std::string_view what) {
   try {
     return yaml_document::load_single(text, "empty " + std::string(what));
@@ -56,41 +45,6 @@ YAML::Node load_document(const Source& src, std::string_view text, std::string_v
 
 std::string show(std::string_view text, std::size_t max_chars) { return yaml_document::show(text, max_chars); }
 
-std::string describe(const YAML::Node& node) {
-  switch (node.Type()) {
-    case YAML::NodeType::Undefined: return "nothing";
-    case YAML::NodeType::Null: return "null";
-    case YAML::NodeType::Sequence: return "a list";
-    case YAML::NodeType::Map: return "a mapping";
-    case YAML::NodeType::Scalar:
-      if (node.Tag() == "?") return "'" + show(node.Scalar()) + "'";
-      if (node.Tag() == "!") return "the quoted string \"" + show(node.Scalar()) + "\"";
-      return "'" + show(node.Scalar()) + "' tagged " + show(node.Tag());
-  }
-  return "something else";
-}
-
-std::string position(const YAML::Mark& mark) {
-  return std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
-}
-
-std::string format_number(double value) {
-  std::array<char, 64> buf{};
-  const auto result = std::to_chars(buf.data(), buf.data() + buf.size(), value);
-  return std::string(buf.data(), result.ptr);
-}
-
-bool Range::contains(double v) const {
-  const bool above = lo_open ? v > lo : v >= lo;
-  const bool below = hi_open ? v < hi : v <= hi;
-  return above && below;
-}
-
-std::string Range::describe(std::string_view what) const {
-  return format_number(lo) + (lo_open ? " < " : " <= ") + std::string(what) + (hi_open ? " < " : " <= ") +
-         format_number(hi);
-}
-
 double read_number(const Source& src, const YAML::Node& node, const YAML::Mark& mark, const std::string& label,
                    const Range& range) {
   const std::string text = node.IsScalar() ? node.Scalar() : std::string();
@@ -98,7 +52,7 @@ double read_number(const Source& src, const YAML::Node& node, const YAML::Mark& 
   double value = 0.0;
   const auto result = std::from_chars(digits.data(), digits.data() + digits.size(), value);
   const bool parsed = result.ec == std::errc() && result.ptr == digits.data() + digits.size();
-  if (!node.IsScalar() || !may_be_number(node) || !parsed || !std::isfinite(value)) {
+  if (!node.IsScalar() || !yaml_reader::may_be_number(node) || !parsed || !std::isfinite(value)) {
     src.fail(mark, "expected a number for '" + label + "', got " + describe(node));
   }
   if (!range.contains(value)) {
@@ -177,7 +131,7 @@ std::int64_t Map::integer(std::string_view key, std::int64_t lo, std::int64_t hi
   const auto result = std::from_chars(digits.data(), digits.data() + digits.size(), value);
   const bool whole = !digits.empty() && result.ptr == digits.data() + digits.size();
   const bool too_big = result.ec == std::errc::result_out_of_range && whole;
-  if (!e.value.IsScalar() || !may_be_number(e.value) || !whole || (result.ec != std::errc() && !too_big)) {
+  if (!e.value.IsScalar() || !yaml_reader::may_be_number(e.value) || !whole || (result.ec != std::errc() && !too_big)) {
     src_->fail(value_mark(key), "expected an integer for '" + label(key) + "', got " + describe(e.value));
   }
   if (too_big || value < lo || value > hi) {

@@ -1,8 +1,9 @@
 #pragma once
 // Typed, located reading of yaml-cpp nodes for the robot-models file: every
 // read checks the type and range and, on failure, throws ModelsError at the
-// node with what was expected. (The mission loader has its own, private to
-// p3at_protocols and throwing MissionError; the two agree on message style.)
+// node with what was expected. The pieces shared with the mission loader are
+// common/yaml's yaml_reader.hpp; the mapping reader is this file's own (its
+// messages name keys by path, "robots[0].motion.cycle_s").
 
 #include <yaml-cpp/yaml.h>
 
@@ -12,18 +13,17 @@
 #include <string_view>
 #include <vector>
 
+#include "p3at/common/number_format.hpp"
+#include "p3at/common/yaml_reader.hpp"
+#include "p3at/verifier/models.hpp"
+
 namespace p3at::verifier::models_detail {
 
-/// Where errors are reported: a file name, and "file:line:column: detail".
-class Source {
- public:
-  explicit Source(std::string name) : name_(std::move(name)) {}
-  [[noreturn]] void fail(const YAML::Mark& mark, std::string detail) const;
-  const std::string& name() const { return name_; }
-
- private:
-  std::string name_;
-};
+/// Where errors are reported: throws ModelsError, "file:line:column: detail".
+using Source = yaml_reader::Source<ModelsError>;
+using yaml_reader::describe;
+using yaml_reader::position;
+using yaml_reader::Range;
 
 /// The root of the one non-empty YAML document in `text`; `what` completes
 /// "empty <what>" when there is none. Throws ModelsError for malformed YAML
@@ -33,22 +33,6 @@ YAML::Node load_document(const Source& src, std::string_view text, std::string_v
 /// User text made safe to echo in a one-line message: control and non-ASCII
 /// bytes escaped, cut after `max_chars`.
 std::string show(std::string_view text, std::size_t max_chars = 48);
-/// What a node is, for "got ..." in messages.
-std::string describe(const YAML::Node& node);
-/// "line:column", 1-based.
-std::string position(const YAML::Mark& mark);
-/// Shortest decimal that reads back as the same double.
-std::string format_number(double value);
-
-/// A closed or open interval, "0 < x <= 10" in messages.
-struct Range {
-  double lo;
-  double hi;
-  bool lo_open = false;
-  bool hi_open = false;
-  bool contains(double v) const;
-  std::string describe(std::string_view what) const;
-};
 
 /// A finite number in `range`; `label` names it in messages.
 double read_number(const Source& src, const YAML::Node& node, const YAML::Mark& mark, const std::string& label,

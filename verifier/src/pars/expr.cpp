@@ -5,6 +5,8 @@
 #include <system_error>
 #include <utility>
 
+#include "p3at/common/number_format.hpp"
+
 namespace p3at::verifier::pars {
 
 const char* to_string(CompareOp op) {
@@ -96,12 +98,7 @@ Expr compare(CompareOp op, Expr left, Expr right) {
   return e;
 }
 
-std::string format_number(double value) {
-  char buffer[64];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  if (ec != std::errc()) return "nan";
-  return std::string(buffer, end);
-}
+std::string format_number(double value) { return format_shortest(value); }
 
 namespace {
 
@@ -158,7 +155,7 @@ void print_list(const std::vector<Expr>& items, std::string& out) {
 
 void print(const Expr& e, std::string& out) {
   switch (e.kind) {
-    case ExprKind::number: out += format_number(e.number); return;
+    case ExprKind::number: out += format_shortest(e.number); return;
     case ExprKind::name: out += e.name; return;
     case ExprKind::tuple:
       out += '(';

@@ -37,7 +37,7 @@
 #include "p3at/hal/clock.hpp"
 #include "p3at/hal/drive_base.hpp"
 #include "p3at/hal/team_link.hpp"
-#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/mission/mission.hpp"
 
 namespace p3at::exec {
 

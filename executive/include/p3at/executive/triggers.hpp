@@ -8,7 +8,7 @@
 
 #include "p3at/executive/schemas.hpp"
 #include "p3at/hal/team_link.hpp"
-#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/mission/mission.hpp"
 
 namespace p3at::exec {
 

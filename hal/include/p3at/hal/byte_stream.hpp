@@ -47,7 +47,8 @@ class ByteStream {
 /// URL, scheme, baud, timeout <= 0), not_found (unknown host, missing device),
 /// refused (nothing listening, device busy or not permitted), timeout.
 /// `connect_timeout_ms` bounds the TCP connect (not name resolution).
-/// See docs/hal.md.
+/// See docs/hal.md. Defined by p3at_hal_backends (hal/backends), the one
+/// target that knows the backends: link it to open streams by URL.
 Result<std::unique_ptr<ByteStream>> open_byte_stream(std::string_view url, int connect_timeout_ms = 2000);
 
 }  // namespace p3at::hal

@@ -113,6 +113,7 @@ class CanBus {
 ///                        stops other sockets on this host from seeing our frames)
 /// A malformed URL, an unknown scheme, a missing interface or a kernel without
 /// AF_CAN is an Error naming the URL, never a crash or an exception.
+/// Defined, with socketcan_available(), by p3at_hal_backends (hal/backends).
 Result<std::unique_ptr<CanBus>> open_can_bus(std::string_view url);
 
 /// Whether this kernel offers AF_CAN raw sockets: ok, or an Error saying why not

@@ -1,13 +1,15 @@
 #pragma once
-/// The robots' team link: authenticated notifications (the FSA's Notify /
-/// Notified / MessageSent), telemetry and mission status. Backends: LCM over UDP
-/// multicast (hal/lcm, real robots and hardware-in-the-loop tests) and the
-/// simulated radio (sim_hal, fast time).
+/// The robots' team link as the executive uses it: authenticated
+/// notifications (the FSA's Notify / Notified / MessageSent), telemetry and
+/// mission status. The protocol is p3at_team_link's (team_link/); its
+/// transports are LCM over UDP multicast (hal/lcm, real robots and
+/// hardware-in-the-loop tests) and the simulated radio (sim_hal, fast time).
+/// The launch gate's verdicts travel on the same link, through the wider
+/// interface gate::VerdictLink (launch_gate/verdict), which the executive
+/// never sees.
 
 #include <cstdint>
-#include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "p3at/common/result.hpp"
@@ -38,45 +40,6 @@ struct Telemetry {
   double trans_vel_mps = 0, rot_vel_radps = 0;
   std::uint64_t cycles = 0, overruns = 0, missed_updates = 0;
   double cycle_p50_us = 0, cycle_p99_us = 0;
-};
-
-/// A launch-gate decision as published on the team link (docs/launch-gate.md).
-enum class GateDecision {
-  go,           ///< the verifier's probability meets the threshold and every criterion holds
-  no_go,        ///< it does not: no robot of the team may move
-  override_go,  ///< the operator overrode this robot's decision with --override-gate
-};
-/// "GO", "NO-GO", "OVERRIDE" (the wire spelling).
-constexpr const char* to_string(GateDecision decision) {
-  switch (decision) {
-    case GateDecision::go: return "GO";
-    case GateDecision::no_go: return "NO-GO";
-    case GateDecision::override_go: return "OVERRIDE";
-  }
-  return "?";
-}
-/// Inverse of to_string(GateDecision); nullopt for anything else (case-sensitive).
-constexpr std::optional<GateDecision> gate_decision_from_string(std::string_view text) {
-  for (const GateDecision d : {GateDecision::go, GateDecision::no_go, GateDecision::override_go}) {
-    if (text == to_string(d)) return d;
-  }
-  return std::nullopt;
-}
-/// True for the decisions that let the team launch (GO and OVERRIDE).
-constexpr bool allows_launch(GateDecision decision) { return decision != GateDecision::no_go; }
-
-/// One robot's launch-gate verdict (authenticated like everything else).
-struct GateVerdict {
-  std::string robot;         ///< the sender (set by the link when publishing)
-  std::string mission_hash;  ///< 64 lowercase hex digits: what the verdict is about
-  GateDecision decision = GateDecision::no_go;
-  double p_time = -1.0;      ///< P(done by tmax_s); < 0 when unknown
-  double p_radius = -1.0;    ///< P(every robot within rmax_m of its goal); < 0 when unknown
-  double p_joint = -1.0;     ///< P(both); < 0 when unknown
-  double threshold = 0.0;    ///< the launch threshold applied
-  double tmax_s = 0.0;       ///< the criteria applied
-  double rmax_m = 0.0;
-  std::string detail;        ///< failed criteria, or why overridden
 };
 
 /// Counters of what the link accepted and rejected; never reset.
@@ -121,11 +84,6 @@ class TeamLink {
   /// The latest authenticated status of each teammate that has sent one.
   virtual const std::vector<TeamStatus>& teammate_status() const = 0;
 
-  /// Publishes this robot's launch-gate verdict (best effort, not
-  /// acknowledged: the gate republishes it until the team has agreed).
-  virtual Status publish_verdict(const GateVerdict& verdict) = 0;
-  /// The latest authenticated gate verdict of each teammate that has sent one.
-  virtual const std::vector<GateVerdict>& teammate_verdicts() const = 0;
   /// The latest authenticated telemetry of each teammate that has sent some
   /// (in-mission re-verification reads where the team is).
   virtual const std::vector<Telemetry>& teammate_telemetry() const = 0;

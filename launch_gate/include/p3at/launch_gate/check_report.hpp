@@ -5,6 +5,7 @@
 #include <string>
 
 #include "p3at/hal/team_link.hpp"
+#include "p3at/launch_gate/gate_verdict.hpp"
 #include "p3at/launch_gate/pre_launch_check.hpp"
 
 namespace p3at::gate {
@@ -20,7 +21,7 @@ std::string format_check(const CheckReport& report);
 std::string check_fields(const CheckReport& report);
 
 /// `robot=.. decision=.. p_joint=.. threshold=.. hash=<first 16 digits>`
-std::string verdict_fields(const hal::GateVerdict& verdict);
+std::string verdict_fields(const gate::GateVerdict& verdict);
 
 /// A number for logs and reports: fixed with `digits` decimals.
 std::string fixed(double value, int digits);

@@ -12,6 +12,7 @@
 
 #include "p3at/hal/clock.hpp"
 #include "p3at/hal/team_link.hpp"
+#include "p3at/launch_gate/gate_verdict.hpp"
 #include "p3at/launch_gate/team_agreement.hpp"
 
 namespace p3at::gate {
@@ -40,7 +41,7 @@ struct SessionResult {
 /// waits until about `deadline_us` (mission_exec: the robot's SIPs, so its
 /// connection stays alive; default: clock.sleep_until_us). Returns once
 /// decided, or with interrupted = true when `stop` becomes true.
-SessionResult run_gate_session(hal::TeamLink& link, hal::Clock& clock, const hal::GateVerdict& own,
+SessionResult run_gate_session(VerdictLink& link, hal::Clock& clock, const gate::GateVerdict& own,
                                const std::vector<std::string>& roster, const SessionOptions& options,
                                const std::function<void(std::int64_t deadline_us)>& pace = {},
                                const std::atomic<bool>* stop = nullptr);

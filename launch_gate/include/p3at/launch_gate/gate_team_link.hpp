@@ -21,13 +21,14 @@
 
 #include "p3at/hal/clock.hpp"
 #include "p3at/hal/team_link.hpp"
+#include "p3at/launch_gate/gate_verdict.hpp"
 
 namespace p3at::gate {
 
 class GateTeamLink final : public hal::TeamLink {
  public:
   /// `inner` and `link_clock` must outlive this object.
-  GateTeamLink(hal::TeamLink& inner, hal::Clock& link_clock) : inner_(inner), link_clock_(link_clock) {}
+  GateTeamLink(VerdictLink& inner, hal::Clock& link_clock) : inner_(inner), link_clock_(link_clock) {}
 
   // ---- hal::TeamLink
   Result<std::uint64_t> notify(const std::string& message, const std::vector<std::string>& recipients) override {
@@ -43,8 +44,6 @@ class GateTeamLink final : public hal::TeamLink {
   /// probability (if any) and, while running with no reason, the note.
   Status publish_status(const hal::TeamStatus& status) override;
   const std::vector<hal::TeamStatus>& teammate_status() const override { return inner_.teammate_status(); }
-  Status publish_verdict(const hal::GateVerdict& verdict) override { return inner_.publish_verdict(verdict); }
-  const std::vector<hal::GateVerdict>& teammate_verdicts() const override { return inner_.teammate_verdicts(); }
   const std::vector<hal::Telemetry>& teammate_telemetry() const override { return inner_.teammate_telemetry(); }
   const hal::TeamLinkStats& stats() const override { return inner_.stats(); }
 
@@ -52,7 +51,7 @@ class GateTeamLink final : public hal::TeamLink {
   /// Notifications received while the gate was deciding: delivered first by the next poll().
   void hand_over(std::vector<hal::TeamNotification> early);
   /// Republish `verdict` every `republish_us` of link time from the next poll() on.
-  void keep_publishing(hal::GateVerdict verdict, std::int64_t republish_us);
+  void keep_publishing(gate::GateVerdict verdict, std::int64_t republish_us);
   /// The probability published in status from now on; republishes the latest status at once.
   void set_p_success(double p_success);
   /// A note for the status reason while the mission runs (empty: none).
@@ -63,10 +62,10 @@ class GateTeamLink final : public hal::TeamLink {
   std::function<void()> after_poll;
 
  private:
-  hal::TeamLink& inner_;
+  VerdictLink& inner_;
   hal::Clock& link_clock_;
   std::vector<hal::TeamNotification> early_;
-  std::optional<hal::GateVerdict> verdict_;
+  std::optional<gate::GateVerdict> verdict_;
   std::int64_t republish_us_ = 0;
   std::optional<std::int64_t> next_verdict_us_;
   std::uint64_t verdicts_republished_ = 0;

@@ -17,7 +17,7 @@
 #include "p3at/launch_gate/gate_team_link.hpp"
 #include "p3at/launch_gate/reverifier.hpp"
 #include "p3at/launch_gate/team_progress.hpp"
-#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/mission/mission.hpp"
 
 namespace p3at::gate {
 

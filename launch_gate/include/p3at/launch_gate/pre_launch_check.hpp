@@ -11,7 +11,8 @@
 
 #include "p3at/common/result.hpp"
 #include "p3at/hal/team_link.hpp"
-#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/launch_gate/gate_verdict.hpp"
+#include "p3at/mission/mission.hpp"
 #include "p3at/verifier/models.hpp"
 #include "p3at/verifier/verify.hpp"
 
@@ -70,6 +71,6 @@ CheckReport pre_launch_check(const CheckRequest& request, const VerdictSource& s
 /// This robot's verdict for the team link. With `override_gate` the decision
 /// is OVERRIDE whatever the verifier said (the probabilities are still the
 /// verifier's, and `detail` says what it had decided). Precondition: report.verified().
-hal::GateVerdict make_verdict(const CheckReport& report, bool override_gate);
+gate::GateVerdict make_verdict(const CheckReport& report, bool override_gate);
 
 }  // namespace p3at::gate

@@ -17,7 +17,7 @@
 
 #include "p3at/common/result.hpp"
 #include "p3at/launch_gate/pre_launch_check.hpp"
-#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/mission/mission.hpp"
 #include "p3at/verifier/models.hpp"
 #include "p3at/verifier/verify.hpp"
 

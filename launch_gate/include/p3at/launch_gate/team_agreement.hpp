@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "p3at/hal/team_link.hpp"
+#include "p3at/launch_gate/gate_verdict.hpp"
 
 namespace p3at::gate {
 
@@ -33,25 +34,25 @@ struct Agreement {
   AgreementState state = AgreementState::waiting;
   std::string reason;                       ///< one line, for logs and refusals
   std::vector<std::string> silent;          ///< teammates not heard from (silent)
-  std::vector<hal::GateVerdict> team;       ///< the verdicts decided on: own first, then teammates by roster
+  std::vector<gate::GateVerdict> team;       ///< the verdicts decided on: own first, then teammates by roster
 };
 
 class TeamAgreement {
  public:
   /// `own.robot` must be set; `roster` lists every robot of the team (own included).
-  TeamAgreement(hal::GateVerdict own, std::vector<std::string> roster, std::int64_t start_us, std::int64_t timeout_us);
+  TeamAgreement(gate::GateVerdict own, std::vector<std::string> roster, std::int64_t start_us, std::int64_t timeout_us);
 
   /// Decides from `teammates` (the link's latest verdict of each) at `now_us`.
-  const Agreement& update(std::int64_t now_us, const std::vector<hal::GateVerdict>& teammates);
+  const Agreement& update(std::int64_t now_us, const std::vector<gate::GateVerdict>& teammates);
 
   const Agreement& current() const { return agreement_; }
   bool decided() const { return agreement_.state != AgreementState::waiting; }
-  const hal::GateVerdict& own() const { return own_; }
+  const gate::GateVerdict& own() const { return own_; }
 
  private:
   void decide(AgreementState state, std::string reason);
 
-  hal::GateVerdict own_;
+  gate::GateVerdict own_;
   std::vector<std::string> teammates_;  ///< roster without own, in roster order
   std::int64_t start_us_;
   std::int64_t timeout_us_;

@@ -13,7 +13,7 @@
 #include "p3at/executive/schemas.hpp"
 #include "p3at/executive/triggers.hpp"
 #include "p3at/hal/team_link.hpp"
-#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/mission/mission.hpp"
 #include "p3at/verifier/verify.hpp"
 
 namespace p3at::gate {

@@ -18,10 +18,10 @@
 #include <vector>
 
 #include "p3at/common/result.hpp"
-#include "p3at/hal/datagram_team_link.hpp"
-#include "p3at/hal/team_key.hpp"
-#include "p3at/hal/team_protocol.hpp"
-#include "p3at/hal/team_wire.hpp"
+#include "p3at/team_link/datagram_team_link.hpp"
+#include "p3at/team_link/team_key.hpp"
+#include "p3at/team_link/team_protocol.hpp"
+#include "p3at/team_link/team_wire.hpp"
 #include "p3at/sim/rng.hpp"
 
 namespace p3at::sim {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/mission/mission.hpp"
 #include "p3at/team_sim/team_run.hpp"
 
 namespace p3at::team_sim {

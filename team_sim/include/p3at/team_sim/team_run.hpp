@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/mission/mission.hpp"
 #include "p3at/sim/world_config.hpp"
 
 namespace p3at::team_sim {

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/mission/mission.hpp"
 #include "p3at/verifier/verify.hpp"
 
 namespace p3at::vipars {

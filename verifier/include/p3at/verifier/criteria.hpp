@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "p3at/common/result.hpp"
-#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/mission/mission.hpp"
 #include "p3at/verifier/outcome.hpp"
 #include "p3at/verifier/pars/expr.hpp"
 #include "p3at/verifier/pars/term.hpp"

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "p3at/common/result.hpp"
-#include "p3at/protocols/mission/mission.hpp"
+#include "p3at/mission/mission.hpp"
 #include "p3at/verifier/models.hpp"
 #include "p3at/verifier/outcome.hpp"
 

@@ -1,0 +1,157 @@
+#include "p3at/team_link/team_key.hpp"
+
+#include <fcntl.h>
+#include <sodium.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace p3at::hal {
+
+namespace {
+
+// A key file is 64 characters plus whitespace; anything much larger is not one,
+// and reading it whole would only waste memory.
+constexpr std::size_t kMaxKeyFileBytes = 4096;
+
+int hex_value(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+
+Error errno_error(const std::string& path, const char* what, int err) {
+  const Error::Code code = err == ENOENT ? Error::Code::not_found
+                           : (err == EACCES || err == EPERM || err == EEXIST) ? Error::Code::refused
+                                                                              : Error::Code::io;
+  return make_error(code, "team key file '" + path + "': " + what + ": " + std::strerror(err));
+}
+
+}  // namespace
+
+TeamKey::~TeamKey() { sodium_memzero(bytes_.data(), bytes_.size()); }
+
+Result<TeamKey> parse_team_key(std::string_view text, std::string_view source_name) {
+  const std::string prefix = "team key file '" + std::string(source_name) + "': ";
+  while (!text.empty() && is_space(text.front())) text.remove_prefix(1);
+  while (!text.empty() && is_space(text.back())) text.remove_suffix(1);
+  if (text.size() != 2 * TeamKey::kBytes) {
+    return make_error(Error::Code::invalid_argument,
+                      prefix + "expected 64 hexadecimal characters (32 bytes), found " +
+                          std::to_string(text.size()) + " characters (create one with `p3at_team_key FILE`)");
+  }
+  TeamKey::Bytes bytes{};
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const int v = hex_value(text[i]);
+    if (v < 0) {
+      sodium_memzero(bytes.data(), bytes.size());
+      return make_error(Error::Code::invalid_argument,
+                        prefix + "character " + std::to_string(i + 1) + " is not hexadecimal");
+    }
+    auto& b = bytes[i / 2];
+    b = static_cast<std::uint8_t>((b << 4) | v);
+  }
+  TeamKey key(bytes);
+  sodium_memzero(bytes.data(), bytes.size());
+  return key;
+}
+
+Result<TeamKey> load_team_key(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return errno_error(path, "cannot open", errno);
+  std::string text(kMaxKeyFileBytes + 1, '\0');
+  std::size_t used = 0;
+  while (used < text.size()) {
+    const ssize_t n = ::read(fd, text.data() + used, text.size() - used);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int err = errno;
+      ::close(fd);
+      return errno_error(path, "cannot read", err);
+    }
+    if (n == 0) break;
+    used += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+  if (used > kMaxKeyFileBytes) {
+    sodium_memzero(text.data(), text.size());
+    return make_error(Error::Code::invalid_argument,
+                      "team key file '" + path + "': larger than " + std::to_string(kMaxKeyFileBytes) +
+                          " bytes, not a key file");
+  }
+  auto key = parse_team_key(std::string_view(text.data(), used), path);
+  sodium_memzero(text.data(), text.size());
+  return key;
+}
+
+Result<TeamKey> generate_team_key() {
+  if (sodium_init() < 0) return make_error(Error::Code::io, "libsodium failed to initialise");
+  TeamKey::Bytes bytes{};
+  randombytes_buf(bytes.data(), bytes.size());
+  TeamKey key(bytes);
+  sodium_memzero(bytes.data(), bytes.size());
+  return key;
+}
+
+std::string team_key_hex(const TeamKey& key) {
+  std::string hex(2 * TeamKey::kBytes + 1, '\0');
+  sodium_bin2hex(hex.data(), hex.size(), key.bytes().data(), key.bytes().size());
+  hex.pop_back();  // sodium_bin2hex writes a terminating NUL
+  return hex;
+}
+
+std::string team_key_fingerprint(const TeamKey& key) {
+  std::array<unsigned char, 8> hash{};
+  // Domain-separated so the fingerprint is never equal to any MAC we send.
+  static constexpr unsigned char kContext[] = "p3at team key fingerprint";
+  crypto_generichash(hash.data(), hash.size(), key.bytes().data(), key.bytes().size(), kContext,
+                     sizeof kContext - 1);
+  std::string hex(2 * hash.size() + 1, '\0');
+  sodium_bin2hex(hex.data(), hex.size(), hash.data(), hash.size());
+  hex.pop_back();
+  return hex;
+}
+
+Status write_team_key_file(const std::string& path, const TeamKey& key, bool overwrite) {
+  const int flags = O_WRONLY | O_CREAT | O_CLOEXEC | (overwrite ? O_TRUNC : O_EXCL);
+  const int fd = ::open(path.c_str(), flags, 0600);
+  if (fd < 0) {
+    if (errno == EEXIST) {
+      return make_error(Error::Code::refused,
+                        "team key file '" + path + "': already exists (refusing to replace a team key)");
+    }
+    return errno_error(path, "cannot create", errno);
+  }
+  // O_CREAT's mode does not apply to an existing file, and the umask may differ.
+  if (::fchmod(fd, 0600) != 0) {
+    const int err = errno;
+    ::close(fd);
+    return errno_error(path, "cannot set mode 0600", err);
+  }
+  std::string text = team_key_hex(key) + "\n";
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int err = errno;
+      sodium_memzero(text.data(), text.size());
+      ::close(fd);
+      return errno_error(path, "cannot write", err);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  sodium_memzero(text.data(), text.size());
+  const int sync_rc = ::fsync(fd);
+  const int sync_errno = errno;
+  if (::close(fd) != 0) return errno_error(path, "cannot write", errno);
+  if (sync_rc != 0) return errno_error(path, "cannot write", sync_errno);
+  return {};
+}
+
+}  // namespace p3at::hal
