@@ -82,36 +82,46 @@ same_result "$work/c1"
 say "4 shards: JSON, text and CSV byte-identical to the unsharded campaign"
 
 # ---- 2. one shard killed, merge names it, rerun only it ----
-say "shard 2 killed with scancel"
 jobs="$(bash cluster/validate-campaign.sh submit "$work/c2" 4 --hold -- "${args[@]}")"
 array="$(job_id array "$jobs")"; merge="$(job_id merge "$jobs")"
-# Start shard 2 alone and cancel it once it runs (if it is still pending
-# when it is cancelled, it is killed before it started: said below).
-scontrol release "${array}_2"
-killed_while=pending
-for _ in $(seq 1 200); do
+# Start shard 2 alone and cancel it once Slurm shows it running. A shard of
+# 50 runs lasts about a second, so on an idle machine it may end before it
+# is seen running; then shard 3, still held, is cancelled before it starts
+# (also a shard that never wrote its part). Which one happened is said.
+victim=2
+scontrol release "${array}_2" >/dev/null 2>&1
+seen=""
+for _ in $(seq 1 400); do
   state="$(task_state "${array}_2")"
-  if [ "$state" = RUNNING ]; then killed_while=running; break; fi
+  [ "$state" = "${seen##* }" ] || seen="$seen $state"
   [ "$state" = PENDING ] || break
-  sleep 0.05
+  sleep 0.02
 done
-scancel "${array}_2"
-scontrol release "$array"
+if [ "$state" = RUNNING ] && scancel "${array}_2" 2>/dev/null; then
+  killed_while="running"
+else
+  victim=3
+  scancel "${array}_3"
+  killed_while="held, before it started (shard 2 went$seen before it could be cancelled running)"
+fi
+say "shard $victim killed with scancel while $killed_while"
+scontrol release "$array" >/dev/null 2>&1 || true
 [ "$(wait_job "$merge")" = FAILED ] || { cat "$work"/c2/logs/merge-*.out; fail "merge job $merge should fail"; }
-state="$(task_state "${array}_2")"
-[ "$state" = CANCELLED ] || fail "shard task ${array}_2 is $state, not CANCELLED (it finished before scancel)"
-[ ! -e "$work/c2/shard-2-of-4.part" ] || fail "a cancelled shard left a part"
+state="$(task_state "${array}_$victim")"
+[ "$state" = CANCELLED ] || fail "shard task ${array}_$victim is $state, not CANCELLED"
+[ ! -e "$work/c2/shard-$victim-of-4.part" ] || fail "a cancelled shard left a part"
 [ ! -e "$work/c2/result.json" ] || fail "a result was written with a shard missing"
+first=$((victim * 50)); last=$((victim * 50 + 49))
 merge_log="$(cat "$work"/c2/logs/merge-*.out)"
-grep -q "missing 1 of 4 shards: shard 2/4 (runs 100..149); rerun it with --shard 2/4" <<< "$merge_log" ||
+grep -qF "missing 1 of 4 shards: shard $victim/4 (runs $first..$last); rerun it with --shard $victim/4" <<< "$merge_log" ||
   { echo "$merge_log"; fail "the merge log does not name the missing shard"; }
-grep -q "merged 150 of 200 runs expected" <<< "$merge_log" ||
+grep -qF "merged 150 of 200 runs expected" <<< "$merge_log" ||
   { echo "$merge_log"; fail "the merge log does not say runs merged of runs expected"; }
-say "merge named the missing shard (killed while $killed_while); rerunning only shard 2"
-jobs="$(bash cluster/validate-campaign.sh rerun "$work/c2" 2)"
+say "the merge job named the missing shard $victim/4; rerunning only that shard"
+jobs="$(bash cluster/validate-campaign.sh rerun "$work/c2" "$victim")"
 array="$(job_id array "$jobs")"; merge="$(job_id merge "$jobs")"
 [ "$(wait_job "$merge")" = COMPLETED ] || { cat "$work"/c2/logs/*; fail "merge job $merge after the rerun did not complete"; }
-[ "$(squeue -h -j "$array" -o %i 2>/dev/null | wc -l)" = 0 ] || fail "rerun array $array still has tasks"
+[ "$(task_state "${array}_$victim")" = COMPLETED ] || fail "the rerun of shard $victim did not complete"
 same_result "$work/c2"
-say "rerun of shard 2 alone: JSON, text and CSV byte-identical to the unsharded campaign"
+say "rerun of shard $victim alone: JSON, text and CSV byte-identical to the unsharded campaign"
 say "passed in $(( $(date +%s) - start_s )) s"
