@@ -49,7 +49,9 @@ wait_job() {
   done
   fail "job $id still '$state' after 300 s"
 }
-task_state() { scontrol show job -o "$1" 2>/dev/null | sed -n 's/.*JobState=\([A-Z_]*\).*/\1/p' | head -1; }
+# A task's state; empty when Slurm has no record of it (a pending array task
+# cancelled with scancel is dropped from its array, not kept as CANCELLED).
+task_state() { scontrol show job -o "$1" 2>/dev/null | sed -n 's/.*JobState=\([A-Z_]*\).*/\1/p' | head -1 || true; }
 job_id() { sed -n "s/^$1 //p" <<< "$2"; }
 
 ex=examples/bounding_overwatch
@@ -108,7 +110,8 @@ say "shard $victim killed with scancel while $killed_while"
 scontrol release "$array" >/dev/null 2>&1 || true
 [ "$(wait_job "$merge")" = FAILED ] || { cat "$work"/c2/logs/merge-*.out; fail "merge job $merge should fail"; }
 state="$(task_state "${array}_$victim")"
-[ "$state" = CANCELLED ] || fail "shard task ${array}_$victim is $state, not CANCELLED"
+[ "$state" = CANCELLED ] || { [ "$victim" = 3 ] && [ -z "$state" ]; } ||
+  fail "shard task ${array}_$victim is $state, not CANCELLED"
 [ ! -e "$work/c2/shard-$victim-of-4.part" ] || fail "a cancelled shard left a part"
 [ ! -e "$work/c2/result.json" ] || fail "a result was written with a shard missing"
 first=$((victim * 50)); last=$((victim * 50 + 49))
