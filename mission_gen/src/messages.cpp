@@ -74,7 +74,10 @@ bool add_recall(GenRng& rng, RobotPlan& r, const std::string& message) {
   return true;
 }
 
-// A patrol between two corners before the robot's last leg, left on `message`.
+// A patrol between two corners before the robot's last leg, left on
+// `message`; every leg it adds (there, the lap, and on to the last goal from
+// either corner) is 1-25 m. No patrol when none fits (the message is then
+// sent to a robot that ignores it, which the format allows).
 void add_patrol(GenRng& rng, RobotPlan& r, const std::string& message, bool corridor) {
   const std::vector<std::size_t> gos = go_indices(r);
   const std::size_t last = gos.back();
@@ -83,20 +86,24 @@ void add_patrol(GenRng& rng, RobotPlan& r, const std::string& message, bool corr
     if (r.ops[i].kind == Op::Kind::go) from = r.ops[i].goal;
   }
   const Point2 to = r.ops[last].goal;
-  Op op;
-  op.kind = Op::Kind::patrol;
-  op.message = message;
-  // The lap runs across the last leg's direction, from near where the robot is.
-  // In a hallway, up and down the hallway.
-  const double h = corridor ? (rng.chance(0.5) ? 0.0 : 3.141592653589793)
-                            : std::atan2(to.y_m - from.y_m, to.x_m - from.x_m) + (rng.chance(0.5) ? 1.2 : -1.2);
-  const double lap = rng.uniform(3.0, 10.0);
-  op.goal = Point2{round_to(from.x_m + 1.5 * std::cos(h), 0.1), round_to(from.y_m + 1.5 * std::sin(h), 0.1)};
-  op.goal2 = Point2{round_to(op.goal.x_m + lap * std::cos(h), 0.1), round_to(op.goal.y_m + lap * std::sin(h), 0.1)};
-  op.go_params = r.ops[last].go_params;
-  op.radius_m = r.ops[last].radius_m;
-  op.exit_first = rng.chance(0.5);
-  insert_op(r, last, op);
+  const auto fits = [](double d) { return d >= 1.0 && d <= 25.0; };
+  for (int attempt = 0; attempt < 12; ++attempt) {
+    Op op;
+    op.kind = Op::Kind::patrol;
+    op.message = message;
+    // Across the last leg's direction (in a hallway: along it, either way).
+    const double h = corridor ? (rng.chance(0.5) ? 0.0 : 3.141592653589793)
+                              : std::atan2(to.y_m - from.y_m, to.x_m - from.x_m) + (rng.chance(0.5) ? 1.2 : -1.2);
+    const double lap = rng.uniform(3.0, 10.0);
+    op.goal = Point2{round_to(from.x_m + 1.5 * std::cos(h), 0.1), round_to(from.y_m + 1.5 * std::sin(h), 0.1)};
+    op.goal2 = Point2{round_to(op.goal.x_m + lap * std::cos(h), 0.1), round_to(op.goal.y_m + lap * std::sin(h), 0.1)};
+    if (!fits(dist(op.goal, to)) || !fits(dist(op.goal2, to))) continue;
+    op.go_params = r.ops[last].go_params;
+    op.radius_m = r.ops[last].radius_m;
+    op.exit_first = rng.chance(0.5);
+    insert_op(r, last, op);
+    return;
+  }
 }
 
 // Where each recall jumps: the next step, the last leg, or the end, never

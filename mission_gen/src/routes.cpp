@@ -152,14 +152,15 @@ Point2 next_point(GenRng& rng, Point2 from, double& heading, double len, bool co
     }
     const Point2 p{round_to(from.x_m + len * std::cos(h), 0.1), round_to(from.y_m + len * std::sin(h), 0.1)};
     const double y_limit = corridor ? 2.5 : half_extent;
-    if (std::abs(p.x_m) <= half_extent + 0.01 && std::abs(p.y_m) <= y_limit + 0.01) {
+    const double leg = dist(p, from);  // after rounding: every leg 1-25 m
+    if (leg >= 1.0 && leg <= 25.0 && std::abs(p.x_m) <= half_extent + 0.01 && std::abs(p.y_m) <= y_limit + 0.01) {
       heading = corridor ? (std::cos(h) >= 0 ? 0.0 : kPi) : h;
       return p;
     }
   }
   // Cornered: head back toward the middle (at least a metre).
   heading = std::abs(from.x_m) + std::abs(from.y_m) < 1.0 ? 0.0 : std::atan2(corridor ? 0.0 : -from.y_m, -from.x_m);
-  const double l = std::max(1.0, std::min(len, std::hypot(from.x_m, corridor ? 0.0 : from.y_m)));
+  const double l = std::max(1.2, std::min(len, std::hypot(from.x_m, corridor ? 0.0 : from.y_m)));
   return Point2{round_to(from.x_m + l * std::cos(heading), 0.1), round_to(from.y_m + l * std::sin(heading), 0.1)};
 }
 
@@ -174,7 +175,7 @@ RobotPlan draw_robot(GenRng& rng, std::size_t index, Point2 start, bool corridor
   for (std::size_t l = 0; l < legs; ++l) {
     const double len = leg_length(rng);
     const Point2 p = next_point(rng, at, heading, len, corridor, half_extent);
-    if (dist(p, at) < 0.8) continue;  // cornered into a leg nobody would write
+    if (dist(p, at) < 1.0) continue;  // cornered into a leg nobody would write
     r.ops.push_back(go_op(rng, p, dist(p, at), r.max_speed_mps));
     at = p;
     if (rng.chance(0.3)) r.ops.push_back(spin_op(rng));
