@@ -124,6 +124,11 @@ int run_crosscheck(const CrosscheckRun& run) {
       progress.update(i, inputs[i].name, phase, done, total);
     });
     progress.finished(i, r);
+    {
+      // As each mission ends, so that a campaign stopped part-way still leaves its results.
+      std::ofstream partial(std::filesystem::path(run.campaign.out_dir) / "missions.jsonl", i == 0 ? std::ios::trunc : std::ios::app);
+      partial << mission_result_json(r).dump() << "\n";
+    }
     if (!run.json) {
       std::printf("%s\n", mission_line(r, bounds).c_str());
       std::fflush(stdout);

@@ -206,18 +206,40 @@ std::vector<Point2> resting_points(const RobotPlan& r) {
   return pts;
 }
 
+// The goals where a robot must stop (within its AtGoal radius).
+std::vector<Point2> goals(const RobotPlan& r) {
+  std::vector<Point2> g;
+  for (const Op& op : r.ops) {
+    if (op.kind == Op::Kind::go) g.push_back(op.goal);
+  }
+  return g;
+}
+
+// Routes pass at least 1.1 m (centre to centre) from where teammates stand
+// still; goals are at least 2 m from them (AVOID_OBSTACLES pushes a robot
+// within about 1.8 m of a teammate, and it must stop within its radius).
 bool keeps_clear(const RobotPlan& r, const std::vector<RobotPlan>& others) {
   const std::vector<Seg> mine = route_segments(r);
   const std::vector<Point2> my_rest = resting_points(r);
+  const std::vector<Point2> my_goals = goals(r);
   for (const RobotPlan& o : others) {
-    for (const Point2& p : resting_points(o)) {
+    const std::vector<Point2> rest = resting_points(o);
+    for (const Point2& p : rest) {
       for (const Seg& s : mine) {
         if (point_segment_distance(p, s) < 1.1) return false;
+      }
+      for (const Point2& g : my_goals) {
+        if (dist(p, g) < 2.0) return false;
       }
     }
     for (const Seg& s : route_segments(o)) {
       for (const Point2& p : my_rest) {
         if (point_segment_distance(p, s) < 1.1) return false;
+      }
+    }
+    for (const Point2& g : goals(o)) {
+      for (const Point2& p : my_rest) {
+        if (dist(p, g) < 2.0) return false;
       }
     }
   }

@@ -18,33 +18,48 @@ struct Room {
   double x0, y0, x1, y1;
 };
 
-// Clearance of a point from every route and start.
-double clearance(Point2 p, const std::vector<Seg>& routes, const std::vector<Point2>& starts) {
-  double c = std::numeric_limits<double>::infinity();
-  for (const Seg& s : routes) c = std::min(c, point_segment_distance(p, s));
-  for (const Point2& s : starts) c = std::min(c, dist(p, s));
-  return c;
+// Where walls may not go: within `keep` of a route (the robot's centre passes
+// there), or within kStopClearance of a goal or a start (the robot must stop
+// there, within an AtGoal radius of a few decimetres, and AVOID_OBSTACLES
+// pushes within sphere + safety margin, 1.25 m by default, of a wall's surface).
+constexpr double kStopClearance = 1.6;
+
+struct Keepout {
+  std::vector<Seg> routes;
+  std::vector<Point2> stops;  ///< starts and goals
+};
+
+bool point_clear(Point2 p, const Keepout& k, double keep) {
+  for (const Seg& s : k.routes) {
+    if (point_segment_distance(p, s) < keep) return false;
+  }
+  for (const Point2& s : k.stops) {
+    if (dist(p, s) < kStopClearance) return false;
+  }
+  return true;
 }
 
-double seg_clearance(const Seg& w, const std::vector<Seg>& routes, const std::vector<Point2>& starts) {
-  double c = std::numeric_limits<double>::infinity();
-  for (const Seg& s : routes) c = std::min(c, segment_distance(w, s));
-  for (const Point2& s : starts) c = std::min(c, point_segment_distance(s, w));
-  return c;
+bool seg_clear(const Seg& w, const Keepout& k, double keep) {
+  for (const Seg& s : k.routes) {
+    if (segment_distance(w, s) < keep) return false;
+  }
+  for (const Point2& s : k.stops) {
+    if (point_segment_distance(s, w) < kStopClearance) return false;
+  }
+  return true;
 }
 
 // A straight wall from a to b, cut wherever a route or start passes within
 // `keep` of it: the cuts are its doorways. Returns the pieces; `gaps` counts
 // the openings between pieces or between a piece and the line's ends.
-std::vector<Seg> wall_with_doorways(Point2 a, Point2 b, double keep, const std::vector<Seg>& routes,
-                                    const std::vector<Point2>& starts, std::size_t& gaps) {
+std::vector<Seg> wall_with_doorways(Point2 a, Point2 b, double keep, const Keepout& keepout, std::size_t& gaps) {
   const double len = dist(a, b);
   const int steps = std::max(2, static_cast<int>(len / 0.05));
   std::vector<bool> solid(static_cast<std::size_t>(steps) + 1);
   for (int i = 0; i <= steps; ++i) {
     const double t = static_cast<double>(i) / steps;
     const Point2 p{a.x_m + t * (b.x_m - a.x_m), a.y_m + t * (b.y_m - a.y_m)};
-    solid[static_cast<std::size_t>(i)] = clearance(p, routes, starts) >= keep;
+    solid[static_cast<std::size_t>(i)] = point_clear(p, keepout, keep);
   }
   std::vector<Seg> pieces;
   gaps = 0;
@@ -81,10 +96,17 @@ WorldPlan draw_world(GenRng& rng, const TeamPlan& team, int layout) {
   WorldPlan w;
   std::vector<Seg> routes;
   std::vector<Point2> starts;
+  Keepout keepout;
   for (const RobotPlan& r : team.robots) {
     for (const Seg& s : route_segments(r)) routes.push_back(s);
     starts.push_back(r.start);
+    keepout.stops.push_back(r.start);
+    for (const Op& op : r.ops) {
+      if (op.kind == Op::Kind::go || op.kind == Op::Kind::patrol) keepout.stops.push_back(op.goal);
+      if (op.kind == Op::Kind::patrol) keepout.stops.push_back(op.goal2);
+    }
   }
+  keepout.routes = routes;
   Room room{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
             -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
   const auto grow = [&room](Point2 p) {
@@ -99,10 +121,11 @@ WorldPlan draw_world(GenRng& rng, const TeamPlan& team, int layout) {
   }
   for (const Point2& s : starts) grow(s);
   const bool corridor = layout == 1;
-  room.x0 = std::floor((room.x0 - rng.uniform(1.5, 3.0)) * 2) / 2;
-  room.x1 = std::ceil((room.x1 + rng.uniform(1.5, 3.0)) * 2) / 2;
-  room.y0 = std::floor((room.y0 - (corridor ? rng.uniform(1.2, 2.0) : rng.uniform(1.5, 3.0))) * 2) / 2;
-  room.y1 = std::ceil((room.y1 + (corridor ? rng.uniform(1.2, 2.0) : rng.uniform(1.5, 3.0))) * 2) / 2;
+  // Goals and starts at least kStopClearance from the outer walls.
+  room.x0 = std::floor((room.x0 - rng.uniform(kStopClearance, 3.0)) * 2) / 2;
+  room.x1 = std::ceil((room.x1 + rng.uniform(kStopClearance, 3.0)) * 2) / 2;
+  room.y0 = std::floor((room.y0 - (corridor ? rng.uniform(kStopClearance, 2.2) : rng.uniform(kStopClearance, 3.0))) * 2) / 2;
+  room.y1 = std::ceil((room.y1 + (corridor ? rng.uniform(kStopClearance, 2.2) : rng.uniform(kStopClearance, 3.0))) * 2) / 2;
 
   // Outer walls, each with the alcoves cut into it: (side, centre, width, depth).
   struct Alcove {
@@ -170,7 +193,7 @@ WorldPlan draw_world(GenRng& rng, const TeamPlan& team, int layout) {
     const Point2 a = vertical ? Point2{at, room.y0} : Point2{room.x0, at};
     const Point2 b = vertical ? Point2{at, room.y1} : Point2{room.x1, at};
     std::size_t gaps = 0;
-    std::vector<Seg> pieces = wall_with_doorways(a, b, keep_door, routes, starts, gaps);
+    std::vector<Seg> pieces = wall_with_doorways(a, b, keep_door, keepout, gaps);
     if (pieces.empty()) return;
     for (const Seg& p : pieces) w.walls.push_back(p);
     w.features.doorways += gaps;
@@ -205,7 +228,7 @@ WorldPlan draw_world(GenRng& rng, const TeamPlan& team, int layout) {
     const Seg stub{{round_to(c.x_m - half * ux, 0.05), round_to(c.y_m - half * uy, 0.05)},
                    {round_to(c.x_m + half * ux, 0.05), round_to(c.y_m + half * uy, 0.05)}};
     if (!inside(room, stub.a, 0.4) || !inside(room, stub.b, 0.4)) continue;
-    if (seg_clearance(stub, routes, starts) < 0.65 || !clear_of_walls(stub, 0.6)) continue;
+    if (!seg_clear(stub, keepout, 0.65) || !clear_of_walls(stub, 0.6)) continue;
     w.walls.push_back(stub);
     ++w.features.wall_stubs;
     ++i;
@@ -225,7 +248,7 @@ WorldPlan draw_world(GenRng& rng, const TeamPlan& team, int layout) {
     bool ok = inside(room, c, 0.8);
     for (int e = 0; e < 4 && ok; ++e) {
       const Seg edge{p[e], p[(e + 1) % 4]};
-      ok = seg_clearance(edge, routes, starts) >= 0.65 && clear_of_walls(edge, 0.6);
+      ok = seg_clear(edge, keepout, 0.65) && clear_of_walls(edge, 0.6);
     }
     if (!ok) continue;
     for (int e = 0; e < 4; ++e) w.walls.push_back({p[e], p[(e + 1) % 4]});
