@@ -14,11 +14,15 @@
 #include "p3at/crosscheck/baseline.hpp"
 #include "p3at/crosscheck/campaign_report.hpp"
 #include "p3at/crosscheck/result_json.hpp"
+#include "p3at/common/vipars_exit.hpp"
 
 namespace p3at::crosscheck {
 namespace {
 
-constexpr int kExitOk = 0, kExitWorse = 1, kExitBadInput = 2, kExitFailed = 3;
+using vipars::kExitBadInput;
+using vipars::kExitFailed;
+using vipars::kExitOk;
+constexpr int kExitWorse = 1;  ///< a mission worse than its baseline
 
 // One line on stderr, redrawn in place on a terminal.
 class Progress {

@@ -1,4 +1,0 @@
-#pragma once
-// Until issue 17 lands on main (the calibration rig, the validation documents
-// and the report become libraries there): the same header from apps/vipars.
-#include "../../../../apps/vipars/calibrate_messages.hpp"
