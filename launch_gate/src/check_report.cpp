@@ -1,14 +1,9 @@
 #include "p3at/launch_gate/check_report.hpp"
+#include "p3at/common/number_format.hpp"
 
 #include <cstdio>
 
 namespace p3at::gate {
-
-std::string fixed(double value, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, value);
-  return buf;
-}
 
 namespace {
 
@@ -33,25 +28,25 @@ std::string format_check(const CheckReport& report) {
   out += line("mission file", report.mission_path);
   out += line("robot models", report.models_path);
   out += line("content hash", report.mission_hash);
-  out += line("P(done by Tmax = " + fixed(r.tmax_s, 1) + " s)", fixed(r.p_time, 4));
-  out += line("P(every robot within Rmax = " + fixed(r.rmax_m, 2) + " m)", fixed(r.p_radius, 4));
-  out += line("P(success) = P(both)", fixed(r.p_joint, 4) + (r.p_joint >= r.threshold ? "  >= " : "  < ") +
-                                          "threshold " + fixed(r.threshold, 4));
+  out += line("P(done by Tmax = " + format_fixed(r.tmax_s, 1) + " s)", format_fixed(r.p_time, 4));
+  out += line("P(every robot within Rmax = " + format_fixed(r.rmax_m, 2) + " m)", format_fixed(r.p_radius, 4));
+  out += line("P(success) = P(both)", format_fixed(r.p_joint, 4) + (r.p_joint >= r.threshold ? "  >= " : "  < ") +
+                                          "threshold " + format_fixed(r.threshold, 4));
   for (const verifier::CriterionVerdict& c : r.criteria) {
-    out += line("criterion " + c.name, fixed(c.probability, 4) + (c.holds ? "  holds" : "  FAILS") + " (needs " +
-                                           fixed(c.required, 4) + ")");
+    out += line("criterion " + c.name, format_fixed(c.probability, 4) + (c.holds ? "  holds" : "  FAILS") + " (needs " +
+                                           format_fixed(c.required, 4) + ")");
   }
   if (r.completion_sd_s > 0.0 || r.completion_mean_s > 0.0) {
-    out += line("predicted completion", fixed(r.completion_mean_s, 1) + " s +- " + fixed(r.completion_sd_s, 1) + " s");
+    out += line("predicted completion", format_fixed(r.completion_mean_s, 1) + " s +- " + format_fixed(r.completion_sd_s, 1) + " s");
   }
   for (const verifier::RobotPrediction& robot : r.robots) {
-    out += line(robot.name + " predicted", "done at " + fixed(robot.finish_mean_s, 1) + " s +- " +
-                                               fixed(robot.finish_sd_s, 1) + ", ends " + fixed(robot.dist_mean_m, 2) +
-                                               " m from its goal, P(within Rmax) " + fixed(robot.p_radius, 4));
+    out += line(robot.name + " predicted", "done at " + format_fixed(robot.finish_mean_s, 1) + " s +- " +
+                                               format_fixed(robot.finish_sd_s, 1) + ", ends " + format_fixed(robot.dist_mean_m, 2) +
+                                               " m from its goal, P(within Rmax) " + format_fixed(robot.p_radius, 4));
   }
   for (const std::string& failed : r.failed) out += "  failed: " + failed + "\n";
-  out += line("decision time", fixed(report.total_ms, 1) + " ms (verifier " + fixed(report.verify_ms, 1) + " ms; " +
-                                   fixed(report.total_cpu_ms, 1) + " ms of CPU)");
+  out += line("decision time", format_fixed(report.total_ms, 1) + " ms (verifier " + format_fixed(report.verify_ms, 1) + " ms; " +
+                                   format_fixed(report.total_cpu_ms, 1) + " ms of CPU)");
   return out;
 }
 
@@ -59,18 +54,18 @@ std::string check_fields(const CheckReport& report) {
   std::string out = std::string("decision=") + to_string(report.status);
   if (report.verified()) {
     const verifier::VerifyResult& r = report.result;
-    out += " p_time=" + fixed(r.p_time, 4) + " p_radius=" + fixed(r.p_radius, 4) + " p_joint=" + fixed(r.p_joint, 4) +
-           " threshold=" + fixed(r.threshold, 4) + " tmax_s=" + fixed(r.tmax_s, 1) + " rmax_m=" + fixed(r.rmax_m, 2) +
+    out += " p_time=" + format_fixed(r.p_time, 4) + " p_radius=" + format_fixed(r.p_radius, 4) + " p_joint=" + format_fixed(r.p_joint, 4) +
+           " threshold=" + format_fixed(r.threshold, 4) + " tmax_s=" + format_fixed(r.tmax_s, 1) + " rmax_m=" + format_fixed(r.rmax_m, 2) +
            " hash=" + report.mission_hash;
   }
-  out += " decision_ms=" + fixed(report.total_ms, 2) + " verify_ms=" + fixed(report.verify_ms, 2) +
-         " decision_cpu_ms=" + fixed(report.total_cpu_ms, 2);
+  out += " decision_ms=" + format_fixed(report.total_ms, 2) + " verify_ms=" + format_fixed(report.verify_ms, 2) +
+         " decision_cpu_ms=" + format_fixed(report.total_cpu_ms, 2);
   return out;
 }
 
 std::string verdict_fields(const gate::GateVerdict& verdict) {
   return "robot=" + verdict.robot + " decision=" + gate::to_string(verdict.decision) + " p_joint=" +
-         fixed(verdict.p_joint, 4) + " threshold=" + fixed(verdict.threshold, 4) +
+         format_fixed(verdict.p_joint, 4) + " threshold=" + format_fixed(verdict.threshold, 4) +
          " hash=" + verdict.mission_hash.substr(0, 16);
 }
 

@@ -4,6 +4,7 @@
 
 #include "p3at/common/log.hpp"
 #include "p3at/launch_gate/check_report.hpp"
+#include "p3at/common/number_format.hpp"
 
 namespace p3at::gate {
 namespace {
@@ -40,7 +41,7 @@ std::optional<std::string> InMissionMonitor::on_poll() {
 std::optional<std::string> InMissionMonitor::handle(const Reverification& answer) {
   const std::string& robot = mission_.robots.at(self_).name;
   if (!answer.result) {
-    log::warn(kLog, "event=reverify-error robot=" + robot + " t_s=" + fixed(answer.at_s, 1) + " cause=" +
+    log::warn(kLog, "event=reverify-error robot=" + robot + " t_s=" + format_fixed(answer.at_s, 1) + " cause=" +
                         answer.cause + " error=\"" + answer.result.error().message + "\"");
     return std::nullopt;
   }
@@ -49,15 +50,15 @@ std::optional<std::string> InMissionMonitor::handle(const Reverification& answer
   latest_p_ = r.p_joint;
   lowest_p_ = std::min(lowest_p_.value_or(r.p_joint), r.p_joint);
   max_compute_ms_ = std::max(max_compute_ms_, answer.compute_ms);
-  log::info(kLog, "event=reverify robot=" + robot + " t_s=" + fixed(answer.at_s, 1) + " cause=" + answer.cause +
-                      " p_time=" + fixed(r.p_time, 4) + " p_radius=" + fixed(r.p_radius, 4) +
-                      " p_joint=" + fixed(r.p_joint, 4) + " abort_threshold=" + fixed(criteria_.abort_threshold, 4) +
-                      " compute_ms=" + fixed(answer.compute_ms, 2));
+  log::info(kLog, "event=reverify robot=" + robot + " t_s=" + format_fixed(answer.at_s, 1) + " cause=" + answer.cause +
+                      " p_time=" + format_fixed(r.p_time, 4) + " p_radius=" + format_fixed(r.p_radius, 4) +
+                      " p_joint=" + format_fixed(r.p_joint, 4) + " abort_threshold=" + format_fixed(criteria_.abort_threshold, 4) +
+                      " compute_ms=" + format_fixed(answer.compute_ms, 2));
   const bool below = criteria_.abort_threshold > 0.0 && r.p_joint < criteria_.abort_threshold;
   std::optional<std::string> abort_reason;
   if (below && executive_->running()) {
-    const std::string what = "re-verification at t_s=" + fixed(answer.at_s, 1) + ": P(success) " +
-                             fixed(r.p_joint, 4) + " < abort threshold " + fixed(criteria_.abort_threshold, 4);
+    const std::string what = "re-verification at t_s=" + format_fixed(answer.at_s, 1) + ": P(success) " +
+                             format_fixed(r.p_joint, 4) + " < abort threshold " + format_fixed(criteria_.abort_threshold, 4);
     switch (criteria_.abort_action) {
       case mission::AbortAction::stop_and_notify:
         if (!abort_requested_) {

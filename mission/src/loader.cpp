@@ -15,22 +15,10 @@
 namespace p3at::mission {
 namespace {
 
-std::string format_error(const std::string& file, int line, int column, const std::string& detail) {
-  if (line <= 0) return file + ": " + detail;
-  return file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + detail;
-}
-
 // Larger than any sensible mission; keeps a wrong path (a log, a disk image) from being slurped.
 constexpr std::streamoff kMaxFileBytes = 16 * 1024 * 1024;
 
 }  // namespace
-
-MissionError::MissionError(std::string file, int line, int column, std::string detail)
-    : std::runtime_error(format_error(file, line, column, detail)),
-      file_(std::move(file)),
-      line_(line),
-      column_(column),
-      detail_(std::move(detail)) {}
 
 Mission parse_mission(std::string_view yaml_text, const std::string& source_name) {
   const detail::Source src(source_name);

@@ -20,7 +20,7 @@ bool needs_quotes(const std::string& name) {
   for (std::string_view special : kSpecial) {
     if (lower == special) return true;
   }
-  return !detail::is_valid_name(name);
+  return !is_valid_name(name);
 }
 
 // A YAML double-quoted scalar; every byte outside printable ASCII but UTF-8 text passes through.

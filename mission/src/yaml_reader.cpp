@@ -29,16 +29,6 @@ std::string join_some(const std::vector<std::string>& items, std::size_t max_ite
   return join(head) + ", ...";
 }
 
-bool is_valid_name(std::string_view text) {
-  if (text.empty() || text.size() > 64) return false;
-  if (text.front() >= '0' && text.front() <= '9') return false;
-  for (char c : text) {
-    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
-    if (!ok) return false;
-  }
-  return true;
-}
-
 MapReader::MapReader(const Source& src, const YAML::Node& node, const YAML::Mark& fallback,
                      std::string for_what, std::string where, std::string noun,
                      const std::vector<std::string>& allowed)

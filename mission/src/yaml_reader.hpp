@@ -16,6 +16,7 @@
 #include "p3at/common/yaml_reader.hpp"
 #include "p3at/mission/loader.hpp"
 #include "p3at/mission/mission.hpp"
+#include "p3at/mission/names.hpp"
 
 namespace p3at::mission::detail {
 
@@ -97,7 +98,5 @@ std::string join_some(const std::vector<std::string>& items, std::size_t max_ite
 /// User text made safe to echo in a one-line message: control bytes escaped, long text cut.
 std::string show(std::string_view text);
 
-/// True if `text` is a valid name (see MapReader::name).
-bool is_valid_name(std::string_view text);
 
 }  // namespace p3at::mission::detail

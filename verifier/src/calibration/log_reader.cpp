@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "p3at/mission/names.hpp"
 #include "p3at/verifier/calibration.hpp"
 
 namespace p3at::verifier {
@@ -51,13 +52,6 @@ std::string show(std::string_view text) {
   }
   if (text.size() > kMax) out += "...";
   return out;
-}
-
-bool is_valid_name(std::string_view text) {
-  if (text.empty() || text.size() > 64 || (text.front() >= '0' && text.front() <= '9')) return false;
-  return std::all_of(text.begin(), text.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
-  });
 }
 
 // One field of a line: its text (trimmed) and the 1-based column it starts at.
@@ -181,7 +175,7 @@ class Reader {
            "expected " + std::to_string(width_) + " fields (as in the header), got " + std::to_string(fields.size()));
     }
     const Field& robot = field(fields, kRobot);
-    if (!is_valid_name(robot.text)) {
+    if (!mission::is_valid_name(robot.text)) {
       fail(line, robot.column, "invalid robot name '" + show(robot.text) +
                                    "' (expected 1 to 64 letters, digits or '_', not starting with a digit)");
     }
@@ -296,18 +290,7 @@ class Reader {
   std::map<std::pair<std::string, std::int64_t>, int> message_lines_;
 };
 
-std::string format_error(const std::string& file, int line, int column, const std::string& detail) {
-  return file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + detail;
-}
-
 }  // namespace
-
-CalibrationLogError::CalibrationLogError(std::string file, int line, int column, std::string detail)
-    : std::runtime_error(format_error(file, line, column, detail)),
-      file_(std::move(file)),
-      line_(line),
-      column_(column),
-      detail_(std::move(detail)) {}
 
 const char* to_string(ManoeuvreKind kind) {
   switch (kind) {

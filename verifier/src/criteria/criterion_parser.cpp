@@ -19,14 +19,6 @@
 
 namespace p3at::verifier {
 
-CriterionError::CriterionError(std::string file, int line, int column, std::string detail)
-    : std::runtime_error(line > 0 ? file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + detail
-                                  : file + ": " + detail),
-      file_(std::move(file)),
-      line_(line),
-      column_(column),
-      detail_(std::move(detail)) {}
-
 namespace {
 
 using pars::detail::Parser;

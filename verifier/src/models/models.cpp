@@ -9,19 +9,7 @@
 namespace p3at::verifier {
 namespace {
 
-std::string format_error(const std::string& file, int line, int column, const std::string& detail) {
-  if (line <= 0) return file + ": " + detail;
-  return file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + detail;
-}
-
 }  // namespace
-
-ModelsError::ModelsError(std::string file, int line, int column, std::string detail)
-    : std::runtime_error(format_error(file, line, column, detail)),
-      file_(std::move(file)),
-      line_(line),
-      column_(column),
-      detail_(std::move(detail)) {}
 
 const RobotModel* Models::find_robot(std::string_view name) const {
   for (const RobotModel& robot : robots) {

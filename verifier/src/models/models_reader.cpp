@@ -15,6 +15,7 @@
 #include "models/text_file.hpp"
 #include "models/units.hpp"
 #include "models/yaml_access.hpp"
+#include "p3at/mission/names.hpp"
 #include "p3at/verifier/models.hpp"
 
 namespace p3at::verifier {
@@ -38,17 +39,6 @@ constexpr Range kWeight{0.0, 1e6, true, false};
 constexpr Range kDelayMs{0.0, 1e7};
 constexpr Range kCoordinate{-1e6, 1e6};
 constexpr Range kRange{0.0, 1000.0, true, false};
-
-// A name as the mission format has it, so models and missions can name the same robot.
-bool is_valid_name(std::string_view text) {
-  if (text.empty() || text.size() > 64) return false;
-  if (text.front() >= '0' && text.front() <= '9') return false;
-  for (char c : text) {
-    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
-    if (!ok) return false;
-  }
-  return true;
-}
 
 std::string indexed(std::string_view label, std::size_t i) { return std::string(label) + "[" + std::to_string(i) + "]"; }
 
@@ -102,7 +92,7 @@ std::vector<RobotModel> read_robots(const Map& root) {
     const Map m(src, node, element_mark(list, node), indexed("robots", i), {"name", "kinematics", "motion"});
     RobotModel robot;
     robot.name = m.string("name");
-    if (!is_valid_name(robot.name)) {
+    if (!mission::is_valid_name(robot.name)) {  // as the mission names robots
       src.fail(m.value_mark("name"), "invalid robot name '" + models_detail::show(robot.name) +
                                          "' for '" + m.label("name") +
                                          "' (expected 1 to 64 letters, digits or '_', not starting with a digit)");

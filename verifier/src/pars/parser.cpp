@@ -10,14 +10,6 @@
 
 namespace p3at::verifier::pars {
 
-ParseError::ParseError(std::string source, int line, int column, std::string detail)
-    : std::runtime_error(line > 0 ? source + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + detail
-                                  : source + ": " + detail),
-      source_(std::move(source)),
-      line_(line),
-      column_(column),
-      detail_(std::move(detail)) {}
-
 namespace detail {
 namespace {
 

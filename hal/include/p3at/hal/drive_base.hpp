@@ -1,7 +1,8 @@
 #pragma once
 /// The drive base as the executive sees it: velocity commands in, odometry and
 /// sonar out, one update per controller cycle (100 ms on a Pioneer).
-/// Implemented by bridge::ArcosDriveBase (a real or emulated Pioneer over ARCOS)
+/// Implemented by bridge::ArcosClient (a real or emulated Pioneer over ARCOS),
+/// bridge::GuardedDriveBase (the same behind the CAN safety node)
 /// and by sim::SimDriveBase (in-process, fast time).
 
 #include <array>

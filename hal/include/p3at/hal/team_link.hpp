@@ -9,6 +9,7 @@
 /// never sees.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,7 @@ struct TeamLinkStats {
   std::uint64_t rejected_bad_tag = 0;
   std::uint64_t rejected_replay = 0;  ///< sequence number not newer than the last accepted
   std::uint64_t rejected_other_mission = 0;
+  std::uint64_t rejected_other_session = 0;  ///< authenticated, but from another launch session (a replay of another run)
   std::uint64_t malformed = 0;        ///< could not be decoded at all
   std::uint64_t verdicts_accepted = 0;   ///< authenticated, newer gate verdicts from teammates
   std::uint64_t telemetry_accepted = 0;  ///< authenticated, newer telemetry from teammates
@@ -89,6 +91,18 @@ class TeamLink {
   virtual const std::vector<Telemetry>& teammate_telemetry() const = 0;
 
   virtual const TeamLinkStats& stats() const = 0;
+
+  /// The launch session this robot belongs to ("" before the gate has
+  /// committed). Every notification, status and telemetry sent carries it;
+  /// those received with any other session are dropped and counted in
+  /// rejected_other_session. Verdicts (gate::VerdictLink) are exempt: they establish
+  /// the session.
+  virtual void set_session(const std::string& session) = 0;
+  virtual const std::string& session() const = 0;
+
+  /// When (in the time passed to poll()) an authenticated message of this
+  /// session last arrived from `robot`; nullopt if none has yet.
+  virtual std::optional<std::int64_t> last_heard_us(const std::string& robot) const = 0;
 };
 
 }  // namespace p3at::hal

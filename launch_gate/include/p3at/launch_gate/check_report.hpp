@@ -23,7 +23,4 @@ std::string check_fields(const CheckReport& report);
 /// `robot=.. decision=.. p_joint=.. threshold=.. hash=<first 16 digits>`
 std::string verdict_fields(const gate::GateVerdict& verdict);
 
-/// A number for logs and reports: fixed with `digits` decimals.
-std::string fixed(double value, int digits);
-
 }  // namespace p3at::gate

@@ -7,29 +7,16 @@
 #include <string>
 #include <string_view>
 
+#include "p3at/common/located_error.hpp"
 #include "p3at/mission/mission.hpp"
 
 namespace p3at::mission {
 
 /// A mission that cannot be loaded. what() is the whole one-line message,
 /// "file:line:column: detail" (or "file: detail" when there is no position).
-class MissionError : public std::runtime_error {
+class MissionError : public LocatedError {
  public:
-  MissionError(std::string file, int line, int column, std::string detail);
-
-  const std::string& file() const { return file_; }
-  /// 1-based line of the offending node; 0 if the error has no position.
-  int line() const { return line_; }
-  /// 1-based column of the offending node; 0 if the error has no position.
-  int column() const { return column_; }
-  /// The message without the location prefix.
-  const std::string& detail() const { return detail_; }
-
- private:
-  std::string file_;
-  int line_ = 0;
-  int column_ = 0;
-  std::string detail_;
+  using LocatedError::LocatedError;
 };
 
 /// Parses and validates a mission from YAML text. `source_name` is used only

@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include "p3at/common/located_error.hpp"
 #include "p3at/verifier/models.hpp"
 #include "p3at/verifier/mog.hpp"
 
@@ -84,19 +85,9 @@ struct CalibrationLog {
 };
 
 /// A log that cannot be read: "file:line:column: detail".
-class CalibrationLogError : public std::runtime_error {
+class CalibrationLogError : public LocatedError {
  public:
-  CalibrationLogError(std::string file, int line, int column, std::string detail);
-  const std::string& file() const { return file_; }
-  int line() const { return line_; }
-  int column() const { return column_; }
-  const std::string& detail() const { return detail_; }
-
- private:
-  std::string file_;
-  int line_ = 0;
-  int column_ = 0;
-  std::string detail_;
+  using LocatedError::LocatedError;
 };
 
 /// The log's column names, in the order write_calibration_log() uses (the

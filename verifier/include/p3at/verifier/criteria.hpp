@@ -19,6 +19,7 @@
 #include <string_view>
 #include <vector>
 
+#include "p3at/common/located_error.hpp"
 #include "p3at/common/result.hpp"
 #include "p3at/mission/mission.hpp"
 #include "p3at/verifier/outcome.hpp"
@@ -67,19 +68,9 @@ struct Criterion {
 
 /// A criterion file that cannot be read: what() is "file:line:column: detail"
 /// ("file: detail" without a position), like mission::MissionError.
-class CriterionError : public std::runtime_error {
+class CriterionError : public LocatedError {
  public:
-  CriterionError(std::string file, int line, int column, std::string detail);
-  const std::string& file() const { return file_; }
-  int line() const { return line_; }
-  int column() const { return column_; }
-  const std::string& detail() const { return detail_; }
-
- private:
-  std::string file_;
-  int line_ = 0;
-  int column_ = 0;
-  std::string detail_;
+  using LocatedError::LocatedError;
 };
 
 /// Parses and checks a criterion (syntax, processes, variables, the form of

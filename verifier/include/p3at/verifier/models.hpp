@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "p3at/common/located_error.hpp"
 #include "p3at/verifier/mog.hpp"
 
 namespace p3at::verifier {
@@ -112,19 +113,9 @@ struct Models {
 };
 
 /// A models file that cannot be loaded: "file:line:column: detail".
-class ModelsError : public std::runtime_error {
+class ModelsError : public LocatedError {
  public:
-  ModelsError(std::string file, int line, int column, std::string detail);
-  const std::string& file() const { return file_; }
-  int line() const { return line_; }
-  int column() const { return column_; }
-  const std::string& detail() const { return detail_; }
-
- private:
-  std::string file_;
-  int line_ = 0;
-  int column_ = 0;
-  std::string detail_;
+  using LocatedError::LocatedError;
 };
 
 /// Parses a models file (YAML). A relative `environment.walls_from` path is

@@ -40,7 +40,18 @@ constexpr std::optional<GateDecision> gate_decision_from_string(std::string_view
 /// True for the decisions that let the team launch (GO and OVERRIDE).
 constexpr bool allows_launch(GateDecision decision) { return decision != GateDecision::no_go; }
 
+/// A teammate's gate nonce, as heard by the robot that publishes a verdict.
+struct HeardNonce {
+  std::string robot;
+  std::string nonce;
+  bool operator==(const HeardNonce&) const = default;
+};
+
 /// One robot's launch-gate verdict (authenticated like everything else).
+/// The last three fields make the launch an agreement of this very run
+/// (docs/launch-gate.md): `nonce` is fresh for every gate, `heard` echoes the
+/// teammates' nonces the sender has heard, `session` is set once the sender
+/// has committed to launching with exactly those teammates.
 struct GateVerdict {
   std::string robot;         ///< the sender (set by the link when publishing)
   std::string mission_hash;  ///< 64 lowercase hex digits: what the verdict is about
@@ -52,6 +63,9 @@ struct GateVerdict {
   double tmax_s = 0.0;       ///< the criteria applied
   double rmax_m = 0.0;
   std::string detail;        ///< failed criteria, or why overridden
+  std::string nonce;         ///< 32 lowercase hex digits, random, one per gate (empty only in tests of old code paths)
+  std::string session;       ///< "" until committed; then the session id (64 lowercase hex digits)
+  std::vector<HeardNonce> heard;  ///< teammates' nonces the sender has heard, at most one per teammate
 };
 
 /// A team link that also carries the gate's verdicts.

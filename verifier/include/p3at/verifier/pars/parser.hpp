@@ -6,29 +6,18 @@
 #include <string>
 #include <string_view>
 
+#include "p3at/common/located_error.hpp"
 #include "p3at/verifier/pars/expr.hpp"
 #include "p3at/verifier/pars/term.hpp"
 
 namespace p3at::verifier::pars {
 
 /// Text that is not valid PARS. what() is "source:line:column: detail".
-class ParseError : public std::runtime_error {
+class ParseError : public LocatedError {
  public:
-  ParseError(std::string source, int line, int column, std::string detail);
-
-  const std::string& source() const { return source_; }
-  /// 1-based line of the offending token (0 if none).
-  int line() const { return line_; }
-  /// 1-based column of the offending token (0 if none).
-  int column() const { return column_; }
-  /// The message without the location prefix.
-  const std::string& detail() const { return detail_; }
-
- private:
-  std::string source_;
-  int line_ = 0;
-  int column_ = 0;
-  std::string detail_;
+  using LocatedError::LocatedError;
+  /// The source name (a file, or e.g. "<criterion>"): file().
+  const std::string& source() const { return file(); }
 };
 
 /// Limits that keep hostile input from exhausting the stack.
