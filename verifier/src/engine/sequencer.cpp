@@ -9,6 +9,7 @@
 #include <utility>
 #include <variant>
 
+#include "engine/interruption.hpp"
 #include "engine/state_analysis.hpp"
 
 namespace p3at::verifier::engine {
@@ -16,6 +17,9 @@ namespace {
 
 // Orderings less likely than this are not worth a branch.
 constexpr double kNegligible = 1e-9;
+// Bins of the interruption time when a message takes a robot out of a motion
+// state (engine/interruption.hpp): each a branch until the robot's next event.
+constexpr std::size_t kInterruptionBins = 12;
 // Separation samples farther apart than this (mean) cannot matter to a safety
 // criterion about robots coming close; they are not kept.
 constexpr double kSeparationHorizonM = 6.0;
@@ -48,9 +52,43 @@ std::pair<double, double> plausible_span(const Mixture1& x) {
   return {lo, hi};
 }
 
+/// The variance an event's time took out of a pending residual that was
+/// surely later (remaining_after): (the event's sequence number, the variance).
+/// The residual's mixture keeps Var X - Var Y so that the clock plus the
+/// residual has Var X; but compared with something that did not share that
+/// event (a message sent later, a robot that entered a state after it), the
+/// residual's spread is Var X + Var Y. Every such comparison adds back twice
+/// the variance of the events in either side's list (see comparison_var).
+struct Hidden {
+  std::size_t event = 0;
+  double var = 0.0;
+};
+using HiddenList = std::vector<Hidden>;
+
+/// 2 x the variance over the union of two hidden lists (by event).
+double comparison_var(const HiddenList& a, const HiddenList& b) {
+  double sum = 0.0;
+  for (const Hidden& h : a) sum += h.var;
+  for (const Hidden& h : b) {
+    const bool shared = std::any_of(a.begin(), a.end(), [&](const Hidden& g) { return g.event == h.event; });
+    if (!shared) sum += h.var;
+  }
+  return 2.0 * sum;
+}
+
+/// x with every component's variance grown by `extra`.
+Mixture1 widened(const Mixture1& x, double extra) {
+  if (!(extra > 0.0)) return x;
+  Mixture1 out = x;
+  for (Component1& c : out.components) c.var += extra;
+  return out;
+}
+
 /// X - Y given X > Y, for independent X, Y: what is left of a pending
-/// duration after another event happened first.
-Mixture1 remaining_after(const Mixture1& x, const Mixture1& y, std::size_t k) {
+/// duration after another event happened first. When X is surely later, the
+/// variance taken out is appended to `hidden` under `event`.
+Mixture1 remaining_after(const Mixture1& x, const Mixture1& y, std::size_t k, HiddenList* hidden = nullptr,
+                         std::size_t event = 0) {
   const auto [x_lo, x_hi] = plausible_span(x);
   const auto [y_lo, y_hi] = plausible_span(y);
   (void)x_hi;
@@ -61,10 +99,14 @@ Mixture1 remaining_after(const Mixture1& x, const Mixture1& y, std::size_t k) {
     // costs one pass over X instead of a pairwise sum and a reduction.
     const double y_mean = y.mean(), y_var = y.variance();
     Mixture1 left = x;
+    double taken = 0.0;  // the variance actually taken out (components cannot go below 0)
     for (Component1& c : left.components) {
       c.mean -= y_mean;
-      c.var = std::max(c.var - y_var, 0.0);
+      const double v = std::max(c.var - y_var, 0.0);
+      taken += c.weight * (c.var - v);
+      c.var = v;
     }
+    if (hidden != nullptr && taken > 0.0) hidden->push_back({event, taken});
     return left;
   }
   const Mixture1 diff = sum(x, negated(y), k);
@@ -77,6 +119,7 @@ Mixture1 remaining_after(const Mixture1& x, const Mixture1& y, std::size_t k) {
 struct Pending {
   std::size_t transition = 0;
   Mixture1 residual;  ///< seconds from the branch clock until it fires
+  HiddenList hidden;  ///< variance taken out by earlier events (remaining_after)
 };
 
 struct Track {
@@ -90,12 +133,26 @@ struct Track {
   bool final = false;
   Mixture1 finish;
   std::vector<std::string> trace;
+  // The current state's entry, for an interruption (engine/interruption.hpp):
+  // the clock then, the events before it, and the time since (the sum of the
+  // clock's increments; `since_hidden` is what comparison_var would add back
+  // for the increments' hidden variance from events before the entry).
+  Mixture1 entry_clock = Mixture1::point(0.0);
+  std::size_t entry_events = 0;
+  Mixture1 since_entry = Mixture1::point(0.0);
+  double since_hidden = 0.0;
+  /// The bin of the interruption that took it out of its last motion state
+  /// (0: none); part of the branch's configuration until its next event, so
+  /// the bins are not merged back into one pose.
+  std::size_t interruption_bin = 0;
+  /// The motion within that bin, a position spread on top of `spread`.
+  Eigen::Matrix2d extra_cov = Eigen::Matrix2d::Zero();
 
   Eigen::Vector2d true_mean() const { return {base.x_m + error.mean(0), base.y_m + error.mean(1)}; }
   Gaussian2 true_position() const {
     Gaussian2 g;
     g.mean = true_mean();
-    g.cov = spread + error.cov.topLeftCorner<2, 2>();
+    g.cov = spread + extra_cov + error.cov.topLeftCorner<2, 2>();
     return g;
   }
 };
@@ -204,6 +261,10 @@ class Sequencer {
     Track& track = b.robots[i];
     track.state = state;
     track.pending.clear();
+    track.entry_clock = b.clock;
+    track.entry_events = b.event_robots.size();
+    track.since_entry = Mixture1::point(0.0);
+    track.since_hidden = 0.0;
     if (trace) track.trace.push_back(spec.states[state].name);
     if (record_entries_) entry_errors_.emplace(std::make_pair(i, state), track.error);
 
@@ -238,7 +299,7 @@ class Sequencer {
       const auto* n = std::get_if<mission::NotifiedParams>(&spec.transitions[t].trigger);
       if (n == nullptr) continue;
       const auto m = mission_.find_message(n->message);
-      if (m && b.delivery[*m]) track.pending.push_back({t, maximum(*b.delivery[*m], cycle_s(i))});
+      if (m && b.delivery[*m]) track.pending.push_back({t, maximum(*b.delivery[*m], cycle_s(i)), {}});
     }
     const StateAnalysis& a = track.analysis;
     if (a.blocked > kNegligible) outcome_.blocked_mass += b.weight * a.blocked;
@@ -252,7 +313,7 @@ class Sequencer {
     for (const TimedExit& e : a.exits) {
       BranchState child = b;
       child.weight = b.weight * e.probability;
-      child.robots[i].pending.push_back({e.transition, e.duration_s});
+      child.robots[i].pending.push_back({e.transition, e.duration_s, {}});
       out.push_back(std::move(child));
     }
   }
@@ -294,7 +355,7 @@ class Sequencer {
         const auto* n = std::get_if<mission::NotifiedParams>(&spec.transitions[tr].trigger);
         if (n == nullptr || n->message != mission_.messages[m].name) continue;
         const bool already = std::any_of(t.pending.begin(), t.pending.end(), [&](const Pending& p) { return p.transition == tr; });
-        if (!already) t.pending.push_back({tr, *b.delivery[m]});
+        if (!already) t.pending.push_back({tr, *b.delivery[m], {}});
       }
     }
   }
@@ -361,7 +422,10 @@ class Sequencer {
     double total = 0.0;
     for (std::size_t c = 0; c < rivals.size(); ++c) {
       for (std::size_t o = 0; o < rivals.size() && first[c] > kNegligible; ++o) {
-        if (o != c) first[c] *= probability_less(residual(candidates[rivals[c]]), residual(candidates[rivals[o]]));
+        if (o == c) continue;
+        const Pending& pc = b.robots[candidates[rivals[c]].robot].pending[candidates[rivals[c]].index];
+        const Pending& po = b.robots[candidates[rivals[o]].robot].pending[candidates[rivals[o]].index];
+        first[c] *= probability_less(widened(pc.residual, comparison_var(pc.hidden, po.hidden)), po.residual);
       }
       total += first[c];
     }
@@ -405,10 +469,21 @@ class Sequencer {
   void fire(BranchState b, std::size_t i, std::size_t pending_index, const Mixture1& elapsed, const Mixture1& elapsed_raw,
             std::vector<BranchState>& out) {
     const std::size_t transition = b.robots[i].pending[pending_index].transition;
+    const HiddenList winner_hidden = b.robots[i].pending[pending_index].hidden;
+    const std::size_t event = b.event_robots.size();
     b.clock = sum(b.clock, elapsed, k());
     for (std::size_t j = 0; j < b.robots.size(); ++j) {
+      Track& tj = b.robots[j];
+      // The time since each robot's state entry grows by this event's
+      // elapsed time (the firing robot's too: its interruption time).
+      if (!tj.final) {
+        tj.since_entry = sum(tj.since_entry, elapsed, k());
+        for (const Hidden& h : winner_hidden) {
+          if (h.event < tj.entry_events) tj.since_hidden += 2.0 * h.var;
+        }
+      }
       if (j == i) continue;
-      for (Pending& p : b.robots[j].pending) p.residual = remaining_after(p.residual, elapsed_raw, k());
+      for (Pending& p : tj.pending) p.residual = remaining_after(p.residual, elapsed_raw, k(), &p.hidden, event);
     }
     for (std::optional<Mixture1>& d : b.delivery) {
       if (!d) continue;
@@ -424,18 +499,69 @@ class Sequencer {
     }
     b.event_robots.push_back(i);
     Track& t = b.robots[i];
+    const mission::RobotSpec& spec = mission_.robots[i];
+    const bool by_message = std::holds_alternative<mission::NotifiedParams>(spec.transitions[transition].trigger);
+    if (by_message && t.analysis.trajectory) {
+      interrupt(std::move(b), i, transition, out);
+      return;
+    }
+    t.interruption_bin = 0;
     t.base = t.analysis.end;
     t.error = t.analysis.error;
     if (t.analysis.sets_spread) {
       t.spread = t.analysis.end_spread;
       t.spread_points = t.analysis.end_offsets;
+      t.extra_cov.setZero();
     }
     const double now = b.clock.mean();
     const Gaussian2 pi = t.true_position();
     for (std::size_t j = 0; j < b.robots.size(); ++j) {
       if (j != i) record_separation(b, i, j, now, pi);
     }
-    enter(std::move(b), i, mission_.robots[i].transitions[transition].to, out);
+    enter(std::move(b), i, spec.transitions[transition].to, out);
+  }
+
+  /// A message takes robot i out of a motion state (b's clock is already at
+  /// the event): the robot is where its leg has got to at the interruption
+  /// time τ (since the state's entry), one branch per bin of τ.
+  void interrupt(BranchState b, std::size_t i, std::size_t transition, std::vector<BranchState>& out) {
+    Track& t = b.robots[i];
+    const Mixture1 tau = widened(t.since_entry, t.since_hidden);
+    const std::vector<InterruptionBin> bins = interruption_bins(*t.analysis.trajectory, tau, kInterruptionBins);
+    // The clock given τ's bin (Gaussian conditioning on the moments): the
+    // clock is the entry's clock plus τ, the two correlated as their
+    // variances say (Cov(C, E) from Var τ = Var C + Var E - 2 Cov(C, E)).
+    const double var_c = b.clock.variance(), var_e = t.entry_clock.variance(), var_tau = tau.variance();
+    const double mean_c = b.clock.mean(), mean_tau = tau.mean();
+    const double cov_c_tau = 0.5 * (var_c - var_e + var_tau);
+    const double beta = var_tau > 1e-12 ? std::clamp(cov_c_tau / var_tau, 0.0, 1.0) : 0.0;
+    const std::size_t to = mission_.robots[i].transitions[transition].to;
+    for (std::size_t k_bin = 0; k_bin < bins.size(); ++k_bin) {
+      const InterruptionBin& bin = bins[k_bin];
+      if (bin.probability < kNegligible) {
+        outcome_.pruned_mass += b.weight * bin.probability;
+        continue;
+      }
+      BranchState child = k_bin + 1 == bins.size() ? std::move(b) : b;
+      child.weight *= bin.probability;
+      if (bins.size() > 1) {
+        const double var = std::max(0.0, var_c - beta * beta * var_tau + beta * beta * bin.tau_var_s2);
+        child.clock = Mixture1::gaussian(mean_c + beta * (bin.tau_mean_s - mean_tau), var);
+      }
+      Track& ti = child.robots[i];
+      ti.interruption_bin = bins.size() > 1 ? k_bin + 1 : 0;
+      ti.base = bin.base;
+      ti.error = bin.error;
+      ti.spread = bin.spread;
+      ti.spread_points = bin.offsets;
+      ti.extra_cov = bin.within;
+      const double now = child.clock.mean();
+      const Gaussian2 pi = ti.true_position();
+      for (std::size_t j = 0; j < child.robots.size(); ++j) {
+        if (j != i) record_separation(child, i, j, now, pi);
+      }
+      enter(std::move(child), i, to, out);
+    }
   }
 
   void finish(BranchState b) {
@@ -453,7 +579,7 @@ class Sequencer {
       for (const Eigen::Vector2d& offset : t.spread_points) {
         Gaussian2 g;
         g.mean = t.true_mean() + offset;
-        g.cov = t.error.cov.topLeftCorner<2, 2>();
+        g.cov = t.error.cov.topLeftCorner<2, 2>() + t.extra_cov;
         r.final_components.push_back(g);
       }
       r.believed_position = Eigen::Vector2d(t.base.x_m, t.base.y_m);
@@ -492,7 +618,7 @@ class Sequencer {
   std::string configuration_key(const BranchState& b) const {
     std::string key;
     for (const Track& t : b.robots) {
-      key += std::to_string(t.state) + (t.final ? "F" : "") + "[";
+      key += std::to_string(t.state) + (t.final ? "F" : "") + "/" + std::to_string(t.interruption_bin) + "[";
       for (const Pending& p : t.pending) key += std::to_string(p.transition) + ",";
       key += "]";
     }
@@ -512,6 +638,9 @@ class Sequencer {
         ta.pending[p].residual = blend(ta.pending[p].residual, wa, tb.pending[p].residual, wb, k());
       }
       if (ta.final) ta.finish = blend(ta.finish, wa, tb.finish, wb, k());
+      ta.since_entry = blend(ta.since_entry, wa, tb.since_entry, wb, k());
+      ta.since_hidden = (wa * ta.since_hidden + wb * tb.since_hidden) / w;
+      ta.entry_clock = blend(ta.entry_clock, wa, tb.entry_clock, wb, k());
       const ErrorState errors[2] = {ta.error, tb.error};
       const double ws[2] = {wa, wb};
       ta.error = combine(errors, ws, 2);

@@ -97,7 +97,8 @@ struct PathResult {
 /// cycles) turns it by that angle, so the path passes through differing
 /// directions as the real NOISE's redraws do.
 PathResult run_path(const StateContext& ctx, std::size_t state, const BaseState& start, const ErrorState& error_start,
-                    double noise_angle_rad, std::size_t cap, double redraw_turn_rad = 0.0) {
+                    double noise_angle_rad, std::size_t cap, double redraw_turn_rad = 0.0,
+                    std::vector<TrajectoryPoint>* record = nullptr) {
   const mission::RobotSpec& robot = *ctx.robot;
   const Kinematics& k = ctx.model->kinematics;
   const exec::BehaviorConfig config = behavior_config(robot, k);
@@ -120,6 +121,7 @@ PathResult run_path(const StateContext& ctx, std::size_t state, const BaseState&
   double turned = 0.0, turned_before = 0.0;
   BaseState before = start;
   for (std::size_t n = 0;; ++n) {
+    if (record != nullptr) record->push_back({r.end, r.error});
     if (n >= 1) {
       if (const auto fired = fired_exit(robot, state, r.end, turned)) {
         r.exit = fired;
@@ -246,14 +248,32 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   const std::size_t cap = cycle_cap(ctx, state, start);
   const double cycle_s = ctx.model->kinematics.cycle_s;
 
+  // A state a message can interrupt keeps each path's pose versus time.
+  std::shared_ptr<LegTrajectory> trajectory;
+  if (has_trigger_kind(robot, state, mission::TriggerKind::notified)) {
+    trajectory = std::make_shared<LegTrajectory>();
+    trajectory->cycle_s = cycle_s;
+    trajectory->paths.resize(points);
+  }
   std::vector<PathResult> paths;
   paths.reserve(points);
   for (std::size_t j = 0; j < points; ++j) {
     const double angle = 2.0 * kPi * (static_cast<double>(j) + 0.5) / static_cast<double>(points);
-    paths.push_back(run_path(ctx, state, start, error_start, angle, cap));
+    paths.push_back(run_path(ctx, state, start, error_start, angle, cap, 0.0,
+                             trajectory ? &trajectory->paths[j] : nullptr));
+  }
+
+  // Headings are continuous per path, but two paths that turned around in
+  // opposite directions end a whole turn apart (+pi and -pi): averaged as
+  // numbers they would face the other way. Bring every end heading within pi
+  // of the first finished path's.
+  for (std::size_t j = 1; j < paths.size(); ++j) {
+    const double ref = paths[0].end.theta_rad;
+    paths[j].end.theta_rad = ref + exec::wrap_angle_rad(paths[j].end.theta_rad - ref);
   }
 
   StateAnalysis a;
+  a.trajectory = trajectory;
   const double w = 1.0 / static_cast<double>(points);
   std::vector<ErrorState> errors;
   std::vector<double> weights;

@@ -1,0 +1,116 @@
+// A message interrupting a motion state (engine/interruption.hpp): the
+// interruption time's bins against closed forms on a straight leg, and a
+// robot recalled mid-leg ending where the recall found it.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+
+#include "engine/interruption.hpp"
+#include "p3at/protocols/mission/loader.hpp"
+#include "p3at/verifier/models.hpp"
+#include "p3at/verifier/verify.hpp"
+
+using namespace p3at;
+using namespace p3at::verifier;
+using namespace p3at::verifier::engine;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Paths moving along x at `speed` m/s from x = 0 (path j offset in y by j),
+/// `cycles` cycles of 0.1 s.
+LegTrajectory straight_leg(double speed, std::size_t cycles, std::size_t paths) {
+  LegTrajectory leg;
+  leg.cycle_s = 0.1;
+  leg.paths.resize(paths);
+  for (std::size_t j = 0; j < paths; ++j) {
+    for (std::size_t n = 0; n <= cycles; ++n) {
+      TrajectoryPoint p;
+      p.base.x_m = speed * 0.1 * static_cast<double>(n);
+      p.base.y_m = static_cast<double>(j);
+      p.base.trans_mps = speed;
+      leg.paths[j].push_back(p);
+    }
+  }
+  return leg;
+}
+
+}  // namespace
+
+TEST_CASE("truncated moments of a standard normal on (0, inf): the half-normal's") {
+  double p = 0.0, mean = 0.0, var = 0.0;
+  truncated_moments(Mixture1::gaussian(0.0, 1.0), 0.0, INFINITY, p, mean, var);
+  CHECK(p == doctest::Approx(0.5).epsilon(1e-9));
+  CHECK(mean == doctest::Approx(std::sqrt(2.0 / kPi)).epsilon(1e-9));
+  CHECK(var == doctest::Approx(1.0 - 2.0 / kPi).epsilon(1e-9));
+  // A point mass counts where it lies.
+  truncated_moments(Mixture1::point(3.0), 2.0, 3.0, p, mean, var);
+  CHECK(p == 1.0);
+  CHECK(mean == 3.0);
+  CHECK(var == 0.0);
+}
+
+TEST_CASE("interruption on a straight leg: the bins' positions have the closed form's mean and variance") {
+  // At constant speed v the position at tau ~ N(mu, s^2) is N(v mu, v^2 s^2):
+  // the bins' mixture (positions at the bins' mean times plus the motion
+  // within each bin) must have that mean and variance exactly.
+  const double v = 0.3, mu = 30.0, s = 2.0;
+  const LegTrajectory leg = straight_leg(v, 1000, 2);
+  const std::vector<InterruptionBin> bins = interruption_bins(leg, Mixture1::gaussian(mu, s * s), 6);
+  REQUIRE(bins.size() == 6);
+  double mass = 0.0, mean = 0.0, second = 0.0;
+  for (const InterruptionBin& b : bins) {
+    CHECK(b.probability == doctest::Approx(1.0 / 6.0).epsilon(1e-6));
+    mass += b.probability;
+    mean += b.probability * b.base.x_m;
+    second += b.probability * (b.base.x_m * b.base.x_m + b.within(0, 0));
+    // The two paths are 1 m apart across the leg: offsets -0.5 and +0.5.
+    REQUIRE(b.offsets.size() == 2);
+    CHECK(b.offsets[0].y() == doctest::Approx(-0.5));
+    CHECK(b.spread(1, 1) == doctest::Approx(0.25));
+  }
+  CHECK(mass == doctest::Approx(1.0).epsilon(1e-12));
+  CHECK(mean == doctest::Approx(v * mu).epsilon(1e-6));
+  CHECK(second - mean * mean == doctest::Approx(v * v * s * s).epsilon(1e-4));
+}
+
+TEST_CASE("interruption after a path's end finds the robot where the path ended") {
+  const LegTrajectory leg = straight_leg(0.3, 100, 1);  // 10 s, ends at x = 3 m
+  const std::vector<InterruptionBin> bins = interruption_bins(leg, Mixture1::gaussian(50.0, 4.0), 6);
+  REQUIRE(bins.size() == 1);  // it does not move over tau's spread: one bin
+  CHECK(bins[0].base.x_m == doctest::Approx(3.0));
+  CHECK(bins[0].within.norm() == doctest::Approx(0.0));
+}
+
+TEST_CASE("a robot recalled mid-leg ends where the recall found it, not at its leg's end") {
+  const mission::Mission m =
+      mission::load_mission_file(std::string(P3AT_SOURCE_DIR) + "/tests/unit/verifier/data/recall.yaml");
+  Models models;
+  for (const mission::RobotSpec& r : m.robots) {
+    RobotModel rm;
+    rm.name = r.name;
+    models.robots.push_back(rm);
+  }
+  models.comm.delivery_s = Mixture1::point(0.0);
+  models.comm.ack_s = Mixture1::point(0.0);
+  Result<SystemOutcome> o = evaluate_system(m, models);
+  REQUIRE(o);
+  CHECK(o->blocked_mass == 0.0);
+  REQUIRE(o->branches.size() == 1);
+  const RobotOutcome& r1 = o->branches[0].robots[0];
+  const RobotOutcome& r2 = o->branches[0].robots[1];
+  REQUIRE(r1.states.size() == 2);
+  CHECK(r1.states[1] == "recalled");
+  // The recall reaches robot1 one cycle after robot2 notifies (robot2's
+  // finish is its acknowledgement, one cycle later still); by then robot1 has
+  // driven at 0.3 m/s for all but its ramp-up (under a second).
+  const double tau = r2.finish_time_s.mean() - 0.1;
+  CHECK(tau > 9.0);
+  CHECK(r1.final_position.mean.x() < 0.3 * tau);
+  CHECK(r1.final_position.mean.x() > 0.3 * tau - 0.5);
+  CHECK(r1.final_position.mean.y() == doctest::Approx(0.0).epsilon(1e-6));
+  // It stops about when recalled, far from the end of the 20 m leg.
+  CHECK(r1.finish_time_s.mean() == doctest::Approx(tau).epsilon(0.02));
+}
