@@ -106,6 +106,20 @@ Mixture1 remaining_after(const Mixture1& x, const Mixture1& y, std::size_t k, Hi
       taken += c.weight * (c.var - v);
       c.var = v;
     }
+    // What the components could not give (point masses: a leg's NOISE paths)
+    // comes out of the spread between them, pulling their means toward the
+    // mixture's mean, so that the clock plus the residual keeps Var X.
+    const double rest = y_var - taken;
+    if (rest > 0.0) {
+      const double m = left.mean();
+      double between = 0.0;
+      for (const Component1& c : left.components) between += c.weight * (c.mean - m) * (c.mean - m);
+      if (between > 0.0) {
+        const double shrink = std::sqrt(std::max(0.0, between - rest) / between);
+        for (Component1& c : left.components) c.mean = m + shrink * (c.mean - m);
+        taken += between * (1.0 - shrink * shrink);
+      }
+    }
     if (hidden != nullptr && taken > 0.0) hidden->push_back({event, taken});
     return left;
   }
