@@ -130,10 +130,25 @@ Mixture1 remaining_after(const Mixture1& x, const Mixture1& y, std::size_t k, Hi
   return left;
 }
 
+/// The robots whose events decided a time (a bit per robot; a robot beyond
+/// the 64th counts as every robot, which only ever makes times dependent).
+/// Two times of disjoint lineages are independent: their absolute values can
+/// be compared as independent random variables, exactly, where residuals
+/// relative to a clock that one of them built cannot (a patrol's laps against
+/// a teammate's long leg: the teammate's residual after each lap keeps the
+/// lap's spread, or loses it, but never as an independent time would).
+using Lineage = std::uint64_t;
+Lineage lineage_of(std::size_t robot) { return robot < 64 ? (Lineage{1} << robot) : ~Lineage{0}; }
+bool independent(Lineage a, Lineage b) { return (a & b) == 0; }
+
 struct Pending {
   std::size_t transition = 0;
   Mixture1 residual;  ///< seconds from the branch clock until it fires
   HiddenList hidden;  ///< variance taken out by earlier events (remaining_after)
+  /// The mission time at which it fires (conditioned on the events before it
+  /// that were independent of it), and whose events decided that time.
+  std::optional<Mixture1> absolute;
+  Lineage lineage = 0;
 };
 
 struct Track {
@@ -152,6 +167,8 @@ struct Track {
   // clock's increments; `since_hidden` is what comparison_var would add back
   // for the increments' hidden variance from events before the entry).
   Mixture1 entry_clock = Mixture1::point(0.0);
+  Lineage entry_lineage = 0;
+  Lineage lineage = 0;  ///< whose events decided when the robot entered its current state
   std::size_t entry_events = 0;
   Mixture1 since_entry = Mixture1::point(0.0);
   double since_hidden = 0.0;
@@ -176,6 +193,9 @@ struct BranchState {
   Mixture1 clock = Mixture1::point(0.0);
   std::vector<Track> robots;
   std::vector<std::optional<Mixture1>> delivery;  ///< per message: residual until delivered; nullopt = not sent
+  std::vector<std::optional<Mixture1>> delivery_at;  ///< per message: the mission time it is delivered
+  std::vector<Lineage> delivery_lineage;             ///< per message: whose events decided that time
+  Lineage clock_lineage = 0;                          ///< whose events decided the clock
   std::vector<SeparationSample> separations;
   std::vector<std::size_t> event_robots;
 };
@@ -212,8 +232,11 @@ class Sequencer {
   std::vector<BranchState> start() {
     BranchState b;
     b.delivery.assign(mission_.messages.size(), std::nullopt);
+    b.delivery_at.assign(mission_.messages.size(), std::nullopt);
+    b.delivery_lineage.assign(mission_.messages.size(), 0);
     for (const mission::RobotSpec& r : mission_.robots) {
       Track t;
+      t.lineage = lineage_of(b.robots.size());
       constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
       t.base = BaseState{r.start.x_m, r.start.y_m, r.start.theta_deg * kDegToRad, 0.0, 0.0};
       b.robots.push_back(std::move(t));
@@ -238,15 +261,22 @@ class Sequencer {
     BranchState b;
     b.clock = Mixture1::point(snap.elapsed_s);
     b.delivery.assign(mission_.messages.size(), std::nullopt);
+    b.delivery_at.assign(mission_.messages.size(), std::nullopt);
+    b.delivery_lineage.assign(mission_.messages.size(), 0);
     for (std::size_t m = 0; m < mission_.messages.size(); ++m) {
       const bool sent = m < snap.messages_sent.size() && snap.messages_sent[m];
       const bool received = m < snap.messages_received.size() && snap.messages_received[m];
       if (received) b.delivery[m] = Mixture1::point(0.0);
       else if (sent) b.delivery[m] = delay_in_cycles(models_.comm.delivery_s, cycle_s(mission_.messages[m].from), k());
+      if (b.delivery[m]) {
+        b.delivery_at[m] = sum(b.clock, *b.delivery[m], k());
+        b.delivery_lineage[m] = lineage_of(mission_.messages[m].from);
+      }
     }
     for (std::size_t i = 0; i < mission_.robots.size(); ++i) {
       const RobotSnapshot& s = snap.robots.at(i);
       Track t;
+      t.lineage = lineage_of(i);
       t.base = BaseState{s.x_m, s.y_m, s.theta_rad, 0.0, 0.0};
       const auto it = entry_errors_.find({i, s.state});
       if (it != entry_errors_.end()) t.error = it->second;
@@ -276,6 +306,7 @@ class Sequencer {
     track.state = state;
     track.pending.clear();
     track.entry_clock = b.clock;
+    track.entry_lineage = b.clock_lineage;
     track.entry_events = b.event_robots.size();
     track.since_entry = Mixture1::point(0.0);
     track.since_hidden = 0.0;
@@ -286,6 +317,8 @@ class Sequencer {
     if (const auto* notify = std::get_if<mission::NotifyParams>(&spec.states[state].behavior)) {
       if (const auto m = mission_.find_message(notify->message)) {
         b.delivery[*m] = delay_in_cycles(models_.comm.delivery_s, cycle_s(i), k());
+        b.delivery_at[*m] = sum(b.clock, *b.delivery[*m], k());
+        b.delivery_lineage[*m] = track.lineage;
         release_waiters(b, *m);
       }
     }
@@ -313,7 +346,20 @@ class Sequencer {
       const auto* n = std::get_if<mission::NotifiedParams>(&spec.transitions[t].trigger);
       if (n == nullptr) continue;
       const auto m = mission_.find_message(n->message);
-      if (m && b.delivery[*m]) track.pending.push_back({t, maximum(*b.delivery[*m], cycle_s(i)), {}});
+      if (m && b.delivery[*m]) {
+        // Seen at the earliest one cycle after the entry: already delivered,
+        // the time is the robot's own; still on its way, the later of the two.
+        const Mixture1 seen = shifted(b.clock, cycle_s(i));
+        const bool delivered = plausible_span(*b.delivery[*m]).second <= 0.0;
+        Pending p{t, maximum(*b.delivery[*m], cycle_s(i)), {}, std::nullopt, track.lineage};
+        if (delivered) {
+          p.absolute = seen;
+        } else if (b.delivery_at[*m]) {
+          p.absolute = maximum(*b.delivery_at[*m], seen, k());
+          p.lineage |= b.delivery_lineage[*m];
+        }
+        track.pending.push_back(std::move(p));
+      }
     }
     const StateAnalysis& a = track.analysis;
     if (a.blocked > kNegligible) outcome_.blocked_mass += b.weight * a.blocked;
@@ -327,7 +373,8 @@ class Sequencer {
     for (const TimedExit& e : a.exits) {
       BranchState child = b;
       child.weight = b.weight * e.probability;
-      child.robots[i].pending.push_back({e.transition, e.duration_s, {}});
+      child.robots[i].pending.push_back(
+          {e.transition, e.duration_s, {}, sum(b.clock, e.duration_s, k()), child.robots[i].lineage});
       out.push_back(std::move(child));
     }
   }
@@ -369,7 +416,7 @@ class Sequencer {
         const auto* n = std::get_if<mission::NotifiedParams>(&spec.transitions[tr].trigger);
         if (n == nullptr || n->message != mission_.messages[m].name) continue;
         const bool already = std::any_of(t.pending.begin(), t.pending.end(), [&](const Pending& p) { return p.transition == tr; });
-        if (!already) t.pending.push_back({tr, *b.delivery[m], {}});
+        if (!already) t.pending.push_back({tr, *b.delivery[m], {}, b.delivery_at[m], b.delivery_lineage[m]});
       }
     }
   }
@@ -439,7 +486,11 @@ class Sequencer {
         if (o == c) continue;
         const Pending& pc = b.robots[candidates[rivals[c]].robot].pending[candidates[rivals[c]].index];
         const Pending& po = b.robots[candidates[rivals[o]].robot].pending[candidates[rivals[o]].index];
-        first[c] *= probability_less(widened(pc.residual, comparison_var(pc.hidden, po.hidden)), po.residual);
+        if (pc.absolute && po.absolute && independent(pc.lineage, po.lineage)) {
+          first[c] *= probability_less(*pc.absolute, *po.absolute);
+        } else {
+          first[c] *= probability_less(widened(pc.residual, comparison_var(pc.hidden, po.hidden)), po.residual);
+        }
       }
       total += first[c];
     }
@@ -466,26 +517,56 @@ class Sequencer {
       child.weight *= p;
       const Mixture1 r_c_raw = child.robots[winner.robot].pending[winner.index].residual;
       Mixture1 r_c = r_c_raw;
+      // The event's mission time: its own absolute time when that is
+      // independent of the clock (conditioned on being before its
+      // independent rivals), else the clock plus the residual.
+      const Pending& wp = child.robots[winner.robot].pending[winner.index];
+      std::optional<Mixture1> at;
+      if (wp.absolute && independent(wp.lineage, child.clock_lineage)) at = *wp.absolute;
       if (!sure) {
         for (std::size_t o = 0; o < rivals.size(); ++o) {
           if (o == c) continue;
           const Candidate& rival = candidates[rivals[o]];
+          const Pending& rp = child.robots[rival.robot].pending[rival.index];
           double q = 0.0;
-          const Mixture1 cond = conditioned_less(r_c, child.robots[rival.robot].pending[rival.index].residual, k(), q);
+          const Mixture1 cond = conditioned_less(r_c, rp.residual, k(), q);
           if (!cond.components.empty() && q > 0.0) r_c = cond;
+          if (at && rp.absolute && independent(wp.lineage, rp.lineage)) {
+            double qa = 0.0;
+            const Mixture1 cond_at = conditioned_less(*at, *rp.absolute, k(), qa);
+            if (!cond_at.components.empty() && qa > 0.0) at = cond_at;
+          }
         }
       }
-      fire(std::move(child), winner.robot, winner.index, r_c, r_c_raw, out);
+      fire(std::move(child), winner.robot, winner.index, r_c, r_c_raw, at, out);
       if (sure) break;
     }
   }
 
   void fire(BranchState b, std::size_t i, std::size_t pending_index, const Mixture1& elapsed, const Mixture1& elapsed_raw,
-            std::vector<BranchState>& out) {
+            const std::optional<Mixture1>& at, std::vector<BranchState>& out) {
     const std::size_t transition = b.robots[i].pending[pending_index].transition;
     const HiddenList winner_hidden = b.robots[i].pending[pending_index].hidden;
+    const Lineage winner_lineage = b.robots[i].pending[pending_index].lineage;
     const std::size_t event = b.event_robots.size();
-    b.clock = sum(b.clock, elapsed, k());
+    if (at) {
+      b.clock = *at;
+      b.clock_lineage = winner_lineage;
+    } else {
+      b.clock = sum(b.clock, elapsed, k());
+      b.clock_lineage |= winner_lineage;
+    }
+    // Times independent of this event are later than it (it came first).
+    for (std::size_t j = 0; j < b.robots.size(); ++j) {
+      if (j == i) continue;
+      for (Pending& p : b.robots[j].pending) {
+        if (!p.absolute || !independent(p.lineage, b.clock_lineage)) continue;
+        if (plausible_span(*p.absolute).first > plausible_span(b.clock).second) continue;
+        double q = 0.0;
+        const Mixture1 later = conditioned_greater(*p.absolute, b.clock, k(), q);
+        if (!later.components.empty() && q > 0.0) p.absolute = later;
+      }
+    }
     for (std::size_t j = 0; j < b.robots.size(); ++j) {
       Track& tj = b.robots[j];
       // The time since each robot's state entry grows by this event's
@@ -515,6 +596,8 @@ class Sequencer {
     Track& t = b.robots[i];
     const mission::RobotSpec& spec = mission_.robots[i];
     const bool by_message = std::holds_alternative<mission::NotifiedParams>(spec.transitions[transition].trigger);
+    // A robot taken on by a message goes on at the message's time.
+    if (by_message) t.lineage = winner_lineage | lineage_of(i);
     if (by_message && t.analysis.trajectory) {
       interrupt(std::move(b), i, transition, out);
       return;
@@ -540,7 +623,12 @@ class Sequencer {
   /// time τ (since the state's entry), one branch per bin of τ.
   void interrupt(BranchState b, std::size_t i, std::size_t transition, std::vector<BranchState>& out) {
     Track& t = b.robots[i];
-    const Mixture1 tau = widened(t.since_entry, t.since_hidden);
+    // The time since the state's entry: the difference of two independent
+    // times when the clock and the entry were decided by different robots,
+    // else the clock's increments since the entry.
+    const bool apart = independent(t.entry_lineage, b.clock_lineage);
+    Mixture1 tau = apart ? maximum(sum(b.clock, negated(t.entry_clock), k()), 0.0) : widened(t.since_entry, t.since_hidden);
+    if (apart) reduce(tau, k());
     const std::vector<InterruptionBin> bins = interruption_bins(*t.analysis.trajectory, tau, kInterruptionBins);
     // The clock given τ's bin (Gaussian conditioning on the moments): the
     // clock is the entry's clock plus τ, the two correlated as their
@@ -649,8 +737,15 @@ class Sequencer {
       Track& ta = a.robots[i];
       const Track& tb = b.robots[i];
       for (std::size_t p = 0; p < ta.pending.size(); ++p) {
-        ta.pending[p].residual = blend(ta.pending[p].residual, wa, tb.pending[p].residual, wb, k());
+        Pending& pa = ta.pending[p];
+        const Pending& pb = tb.pending[p];
+        pa.residual = blend(pa.residual, wa, pb.residual, wb, k());
+        if (pa.absolute && pb.absolute) pa.absolute = blend(*pa.absolute, wa, *pb.absolute, wb, k());
+        else pa.absolute.reset();
+        pa.lineage |= pb.lineage;
       }
+      ta.lineage |= tb.lineage;
+      ta.entry_lineage |= tb.entry_lineage;
       if (ta.final) ta.finish = blend(ta.finish, wa, tb.finish, wb, k());
       ta.since_entry = blend(ta.since_entry, wa, tb.since_entry, wb, k());
       ta.since_hidden = (wa * ta.since_hidden + wb * tb.since_hidden) / w;
@@ -671,7 +766,10 @@ class Sequencer {
     }
     for (std::size_t m = 0; m < a.delivery.size(); ++m) {
       if (a.delivery[m] && b.delivery[m]) a.delivery[m] = blend(*a.delivery[m], wa, *b.delivery[m], wb, k());
+      if (a.delivery_at[m] && b.delivery_at[m]) a.delivery_at[m] = blend(*a.delivery_at[m], wa, *b.delivery_at[m], wb, k());
+      a.delivery_lineage[m] |= b.delivery_lineage[m];
     }
+    a.clock_lineage |= b.clock_lineage;
     if (wb > wa) {
       a.separations = b.separations;
       a.event_robots = b.event_robots;
