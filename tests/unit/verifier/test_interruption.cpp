@@ -114,3 +114,81 @@ TEST_CASE("a robot recalled mid-leg ends where the recall found it, not at its l
   // It stops about when recalled, far from the end of the 20 m leg.
   CHECK(r1.finish_time_s.mean() == doctest::Approx(tau).epsilon(0.02));
 }
+
+namespace {
+
+Models perfect(const mission::Mission& m) {
+  Models models;
+  for (const mission::RobotSpec& r : m.robots) {
+    RobotModel rm;
+    rm.name = r.name;
+    models.robots.push_back(rm);
+  }
+  models.comm.delivery_s = Mixture1::gaussian(0.05, 0.0004);
+  models.comm.ack_s = Mixture1::gaussian(0.1, 0.0004);
+  return models;
+}
+
+double accounted(const SystemOutcome& o) {
+  double w = o.pruned_mass + o.blocked_mass + o.loop_cutoff_mass;
+  for (const Branch& b : o.branches) w += b.weight;
+  return w;
+}
+
+}  // namespace
+
+TEST_CASE("patrol until relieved: the laps' masses and the cut-off sum to 1; the patrol is left where the message finds it") {
+  const mission::Mission m =
+      mission::load_mission_file(std::string(P3AT_SOURCE_DIR) + "/tests/unit/verifier/data/patrol.yaml");
+  const Models models = perfect(m);
+  Result<SystemOutcome> o = evaluate_system(m, models);
+  REQUIRE(o);
+  CHECK(accounted(*o) == doctest::Approx(1.0).epsilon(1e-9));
+  CHECK(o->loop_cutoff_mass == 0.0);
+  REQUIRE_FALSE(o->branches.empty());
+  double relieved = 0.0;
+  for (const Branch& b : o->branches) {
+    const RobotOutcome& r1 = b.robots[0];
+    REQUIRE_FALSE(r1.states.empty());
+    CHECK(r1.states.back() == "relieved");
+    // Several legs of the beat before the relief (robot2's leg is three beats long).
+    CHECK(r1.states.size() >= 4);
+    // On the beat, not at a leg's end by construction: anywhere from A to B.
+    CHECK(r1.final_position.mean.x() > -0.3);
+    CHECK(r1.final_position.mean.x() < 2.3);
+    relieved += b.weight;
+  }
+  CHECK(relieved == doctest::Approx(1.0 - o->pruned_mass - o->blocked_mass).epsilon(1e-9));
+
+  // A tighter budget cuts the loop off: every lap past it is mass reported
+  // and counted as failure, never dropped.
+  Models tight = models;
+  tight.budget.max_events = 100;  // one entry per state: the second lap is cut
+  Result<SystemOutcome> cut = evaluate_system(m, tight);
+  REQUIRE(cut);
+  CHECK(cut->loop_cutoff_mass > 0.5);
+  CHECK(accounted(*cut) == doctest::Approx(1.0).epsilon(1e-9));
+  Result<VerifyResult> r = verify(m, tight, VerifyOptions{});
+  REQUIRE(r);
+  CHECK(r->p_joint <= 1.0 - cut->loop_cutoff_mass + 1e-12);
+}
+
+TEST_CASE("a patrol nobody relieves is cut off by the loop budget, quickly, and verify says so") {
+  mission::Mission m =
+      mission::load_mission_file(std::string(P3AT_SOURCE_DIR) + "/tests/unit/verifier/data/patrol.yaml");
+  // robot2 never notifies: it stops at its goal for good.
+  m.robots[1].transitions.resize(1);
+  m.robots[1].transitions[0].to = 2;
+  for (mission::State& s : m.robots[1].states) s.outgoing.clear();
+  m.robots[1].states[0].outgoing.push_back(0);
+  const Models models = perfect(m);
+  Result<SystemOutcome> o = evaluate_system(m, models);
+  REQUIRE(o);
+  CHECK(o->loop_cutoff_mass == doctest::Approx(1.0).epsilon(1e-9));
+  CHECK(o->branches.empty());
+  Result<VerifyResult> r = verify(m, models, VerifyOptions{});
+  REQUIRE(r);
+  CHECK(r->p_joint == 0.0);
+  CHECK(r->loop_cutoff_mass == doctest::Approx(1.0).epsilon(1e-9));
+  CHECK_FALSE(r->go);
+}

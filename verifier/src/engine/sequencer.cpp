@@ -176,6 +176,8 @@ struct Track {
   /// (0: none); part of the branch's configuration until its next event, so
   /// the bins are not merged back into one pose.
   std::size_t interruption_bin = 0;
+  /// Entries per state in this branch: a loop's laps (the budget cuts them off).
+  std::vector<std::size_t> visits;
   /// The motion within that bin, a position spread on top of `spread`.
   Eigen::Matrix2d extra_cov = Eigen::Matrix2d::Zero();
 
@@ -214,6 +216,7 @@ class Sequencer {
 
  private:
   std::size_t k() const { return models_.budget.max_components; }
+  std::size_t max_visits() const { return std::max<std::size_t>(1, models_.budget.max_events / 100); }
   double cycle_s(std::size_t robot) const { return robot_models_[robot]->kinematics.cycle_s; }
 
   /// The Def. 10 loop: one event per branch per step until every branch has
@@ -305,6 +308,14 @@ class Sequencer {
     Track& track = b.robots[i];
     track.state = state;
     track.pending.clear();
+    // A loop (a back-edge in the FSA) is the paper's tail recursion unrolled
+    // one lap per entry; laps beyond the budget are cut off, their mass
+    // reported and counted as failure.
+    if (track.visits.size() < spec.states.size()) track.visits.resize(spec.states.size(), 0);
+    if (++track.visits[state] > max_visits()) {
+      outcome_.loop_cutoff_mass += b.weight;
+      return;
+    }
     track.entry_clock = b.clock;
     track.entry_lineage = b.clock_lineage;
     track.entry_events = b.event_robots.size();

@@ -172,6 +172,7 @@ Result<VerifyResult> verify(const mission::Mission& mission, const Models& model
   r.p_joint = std::clamp(p.joint, 0.0, 1.0);
   r.pruned_mass = o.pruned_mass;
   r.blocked_mass = o.blocked_mass;
+  r.loop_cutoff_mass = o.loop_cutoff_mass;
   r.branches = o.branches.size();
   r.subsystems = o.subsystems;
 
