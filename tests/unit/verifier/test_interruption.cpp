@@ -7,6 +7,7 @@
 #include <string>
 
 #include "engine/interruption.hpp"
+#include "engine/race.hpp"
 #include "p3at/protocols/mission/loader.hpp"
 #include "p3at/verifier/models.hpp"
 #include "p3at/verifier/verify.hpp"
@@ -191,4 +192,40 @@ TEST_CASE("a patrol nobody relieves is cut off by the loop budget, quickly, and 
   CHECK(r->p_joint == 0.0);
   CHECK(r->loop_cutoff_mass == doctest::Approx(1.0).epsilon(1e-9));
   CHECK_FALSE(r->go);
+}
+
+TEST_CASE("three or more independent times racing: the joint first-arrival probabilities, not pairwise products") {
+  // Three equal normals: 1/3 each (the pairwise product gives 1/4 each,
+  // summing to 3/4: the events X_c < X_o are correlated through X_c).
+  const Mixture1 a = Mixture1::gaussian(10.0, 1.0);
+  std::vector<double> p = first_probabilities({&a, &a, &a});
+  REQUIRE(p.size() == 3);
+  for (const double q : p) CHECK(q == doctest::Approx(1.0 / 3.0).epsilon(2e-3));
+
+  // Different means against an independent numerical integral of
+  // f_c(t) * prod_o (1 - F_o(t)) (Simpson, 20,000 intervals).
+  const Mixture1 x0 = Mixture1::gaussian(10.0, 1.0), x1 = Mixture1::gaussian(10.5, 0.25), x2 = Mixture1::gaussian(11.0, 4.0);
+  p = first_probabilities({&x0, &x1, &x2});
+  const double means[3] = {10.0, 10.5, 11.0}, sds[3] = {1.0, 0.5, 2.0};
+  for (int c = 0; c < 3; ++c) {
+    const auto integrand = [&](double t) {
+      double f = normal_pdf((t - means[c]) / sds[c]) / sds[c];
+      for (int o = 0; o < 3; ++o) {
+        if (o != c) f *= 1.0 - normal_cdf((t - means[o]) / sds[o]);
+      }
+      return f;
+    };
+    const int n = 20000;
+    const double lo = -10.0, hi = 30.0, h = (hi - lo) / n;
+    double sum = integrand(lo) + integrand(hi);
+    for (int k = 1; k < n; ++k) sum += (k % 2 == 1 ? 4.0 : 2.0) * integrand(lo + k * h);
+    CHECK(p[static_cast<std::size_t>(c)] == doctest::Approx(sum * h / 3.0).epsilon(3e-3));
+  }
+
+  // Equal point masses: a tie, which the executive breaks in file order.
+  const Mixture1 s = Mixture1::point(5.0);
+  p = first_probabilities({&s, &s, &s});
+  CHECK(p[0] == doctest::Approx(1.0));
+  CHECK(p[1] == doctest::Approx(0.0));
+  CHECK(p[2] == doctest::Approx(0.0));
 }

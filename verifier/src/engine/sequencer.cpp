@@ -10,6 +10,7 @@
 #include <variant>
 
 #include "engine/interruption.hpp"
+#include "engine/race.hpp"
 #include "engine/state_analysis.hpp"
 
 namespace p3at::verifier::engine {
@@ -489,10 +490,33 @@ class Sequencer {
       if (span[c].first <= earliest_latest) rivals.push_back(c);
     }
 
-    // Which fires first: P(R_c < R_o for every other rival o), pairwise products, normalised.
+    // Which fires first: P(R_c < R_o for every other rival o), normalised.
+    // Two rivals: the pairwise probability. Three or more whose times are
+    // mutually independent (disjoint lineages: robots that have not heard
+    // from each other): the joint probability by quadrature over the race on
+    // their absolute times (first_probabilities). Otherwise the product of
+    // pairwise probabilities: one robot's own exits, or times that share
+    // history, are not independent, and the product is what was validated.
     std::vector<double> first(rivals.size(), 1.0);
     double total = 0.0;
-    for (std::size_t c = 0; c < rivals.size(); ++c) {
+    bool joint = false;
+    if (rivals.size() >= 3) {
+      bool apart = true;
+      for (std::size_t c = 0; c < rivals.size() && apart; ++c) {
+        const Pending& pc = b.robots[candidates[rivals[c]].robot].pending[candidates[rivals[c]].index];
+        for (std::size_t o = c + 1; o < rivals.size() && apart; ++o) {
+          const Pending& po = b.robots[candidates[rivals[o]].robot].pending[candidates[rivals[o]].index];
+          apart = pc.absolute && po.absolute && independent(pc.lineage, po.lineage);
+        }
+      }
+      if (apart) {
+        std::vector<const Mixture1*> xs;
+        for (const std::size_t r : rivals) xs.push_back(&*b.robots[candidates[r].robot].pending[candidates[r].index].absolute);
+        first = first_probabilities(xs);
+        joint = true;
+      }
+    }
+    for (std::size_t c = 0; c < rivals.size() && !joint; ++c) {
       for (std::size_t o = 0; o < rivals.size() && first[c] > kNegligible; ++o) {
         if (o == c) continue;
         const Pending& pc = b.robots[candidates[rivals[c]].robot].pending[candidates[rivals[c]].index];
@@ -503,8 +527,8 @@ class Sequencer {
           first[c] *= probability_less(widened(pc.residual, comparison_var(pc.hidden, po.hidden)), po.residual);
         }
       }
-      total += first[c];
     }
+    for (const double f : first) total += f;
     if (!(total > 0.0)) {  // ties everywhere (identical point masses): file order decides
       first.assign(rivals.size(), 0.0);
       first[0] = 1.0;
