@@ -222,10 +222,11 @@ TEST_CASE("three or more independent times racing: the joint first-arrival proba
     CHECK(p[static_cast<std::size_t>(c)] == doctest::Approx(sum * h / 3.0).epsilon(3e-3));
   }
 
-  // Equal point masses: a tie, which the executive breaks in file order.
+  // Equal point masses (three identical legs' quadrature nodes): a tie of the
+  // quadrature, shared evenly once normalised (each gets (1/2)^2 of the cell).
   const Mixture1 s = Mixture1::point(5.0);
   p = first_probabilities({&s, &s, &s});
-  CHECK(p[0] == doctest::Approx(1.0));
-  CHECK(p[1] == doctest::Approx(0.0));
-  CHECK(p[2] == doctest::Approx(0.0));
+  CHECK(p[0] == doctest::Approx(0.25));
+  CHECK(p[1] == doctest::Approx(0.25));
+  CHECK(p[2] == doctest::Approx(0.25));
 }

@@ -31,7 +31,7 @@ std::vector<double> first_probabilities(const std::vector<const Mixture1*>& xs) 
   }
   std::vector<double> out(xs.size(), 0.0);
   if (xs.empty() || !(hi >= lo)) return out;
-  if (!(hi > lo)) {  // every time the same point: the first in order wins
+  if (!(hi > lo)) {  // every time the same point: one cell around it
     lo -= 1.0;
     hi += 1.0;
   }
@@ -60,12 +60,13 @@ std::vector<double> first_probabilities(const std::vector<const Mixture1*>& xs) 
     for (std::size_t c = 0; c < n; ++c) {
       const double mass = (next_pt[c] + next_sm[c]) - (prev_pt[c] + prev_sm[c]);
       if (!(mass > 0.0)) continue;
-      // Not fired yet: the continuous part at the cell's middle; a point
-      // mass in the cell has fired first if it is before c in order.
+      // Not fired yet: at the cell's middle. Point masses of different
+      // robots in one cell are a tie of the quadrature (identical legs give
+      // identical nodes), which real runs, continuous, split evenly.
       double others = 1.0;
       for (std::size_t o = 0; o < n && others > 0.0; ++o) {
         if (o == c) continue;
-        const double fired = 0.5 * (prev_sm[o] + next_sm[o]) + (o < c ? next_pt[o] : prev_pt[o]);
+        const double fired = 0.5 * (prev_sm[o] + next_sm[o]) + 0.5 * (prev_pt[o] + next_pt[o]);
         others *= std::max(0.0, 1.0 - fired);
       }
       out[c] += mass * others;

@@ -10,9 +10,10 @@ namespace p3at::verifier::engine {
 
 /// P(X_c is the smallest) for independent X_0..X_n-1, each c: the integral of
 /// X_c's density times every other's survival, by a deterministic sum over a
-/// grid of the plausible span (CDF differences, so point masses count; a tie
-/// within a cell goes to the lower index, as the executive checks its
-/// triggers in file order). Products of pairwise probabilities
+/// grid of the plausible span (CDF differences, so point masses count; point
+/// masses that tie within a cell share it evenly: the times are different
+/// robots', and the tie an artifact of identical quadrature nodes). Products
+/// of pairwise probabilities
 /// P(X_c < X_o) are not this for three or more: the events X_c < X_o are
 /// positively correlated through X_c (three equal times give 1/4 each by the
 /// product, 1/3 in truth).
