@@ -178,7 +178,13 @@ PathResult run_path(const StateContext& ctx, std::size_t state, const BaseState&
   double turned = 0.0, turned_before = 0.0;
   BaseState before = start;
   for (std::size_t n = 0;; ++n) {
-    if (record != nullptr) record->push_back({r.end, r.error});
+    // Recorded until the robot has come to rest for good (a leg waiting at its
+    // goal for a message): beyond the record the pose is held (pose_at), so a
+    // long wait costs no memory.
+    if (record != nullptr) {
+      if (record->size() >= 2 && at_rest(r.end) && at_rest(record->back().base)) record = nullptr;  // for good: indices are cycles
+      else record->push_back({r.end, r.error});
+    }
     if (n >= 1) {
       if (const auto fired = fired_exit(robot, state, r.end, turned)) {
         r.exit = fired;
