@@ -1,0 +1,257 @@
+#include "engine/noise_segments.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Eigenvalues>
+
+namespace p3at::verifier::engine {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Successive draws' quadrature directions are turned by the golden angle, so
+// that over many redraws the directions used do not sit on one lattice.
+constexpr double kGoldenAngleRad = 2.399963229728653;
+
+// The clustering's metric: metres, with a heading difference of 1 rad
+// counted as 0.3 m, a speed difference of 1 m/s as 2 m and a turn rate of
+// 1 rad/s as 0.3 m (what each does to where the path goes next, roughly).
+using Features = std::array<double, 5>;
+Features features(const Walker& w) {
+  return {w.q.x_m, w.q.y_m, 0.3 * w.q.theta_rad, 2.0 * w.q.trans_mps, 0.3 * w.q.rot_radps};
+}
+double distance2(const Features& a, const Features& b) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) s += (a[i] - b[i]) * (a[i] - b[i]);
+  return s;
+}
+
+Eigen::Vector3d pose_of(const Walker& w) { return {w.q.x_m, w.q.y_m, w.q.theta_rad}; }
+
+/// The weighted covariance of the walkers' (x, y, heading).
+Eigen::Matrix3d pose_cov(const std::vector<Walker>& ws, Eigen::Vector3d& mean) {
+  double total = 0.0;
+  mean.setZero();
+  for (const Walker& w : ws) {
+    mean += w.weight * pose_of(w);
+    total += w.weight;
+  }
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  if (!(total > 0.0)) return cov;
+  mean /= total;
+  for (const Walker& w : ws) {
+    const Eigen::Vector3d d = pose_of(w) - mean;
+    cov += (w.weight / total) * d * d.transpose();
+  }
+  return cov;
+}
+
+Walker merge(const std::vector<const Walker*>& members) {
+  Walker out;
+  double total = 0.0;
+  for (const Walker* m : members) total += m->weight;
+  out.cycles = members.front()->cycles;
+  out.weight = total;
+  out.q = BaseState{};
+  out.before = BaseState{};
+  out.error = ErrorState{};
+  for (const Walker* m : members) {
+    const double f = m->weight / total;
+    out.q.x_m += f * m->q.x_m;
+    out.q.y_m += f * m->q.y_m;
+    out.q.theta_rad += f * m->q.theta_rad;
+    out.q.trans_mps += f * m->q.trans_mps;
+    out.q.rot_radps += f * m->q.rot_radps;
+    out.before.x_m += f * m->before.x_m;
+    out.before.y_m += f * m->before.y_m;
+    out.before.theta_rad += f * m->before.theta_rad;
+    out.before.trans_mps += f * m->before.trans_mps;
+    out.before.rot_radps += f * m->before.rot_radps;
+    out.turned_rad += f * m->turned_rad;
+    out.turned_before_rad += f * m->turned_before_rad;
+    out.error.mean += f * m->error.mean;
+    out.error.cov += f * m->error.cov;
+  }
+  // The members' error means differ mostly because their odometric poses do
+  // (a scale error grows with the distance driven, a heading error with the
+  // turn): that spread is the pose spread, which the merged walkers keep
+  // (see the restoring scale below), and the end of the state regresses it
+  // out (error_given_end). Adding it to the covariance here as well would
+  // count it again at every redraw.
+  return out;
+}
+
+}  // namespace
+
+std::vector<Walker> reduce_walkers(const std::vector<Walker>& walkers, std::size_t keep) {
+  keep = std::max<std::size_t>(keep, 1);
+  if (walkers.size() <= keep) return walkers;
+  const std::size_t n = walkers.size();
+  std::vector<Features> f(n);
+  for (std::size_t i = 0; i < n; ++i) f[i] = features(walkers[i]);
+
+  // Seeds: the heaviest, then repeatedly the walker with the largest
+  // weight × squared distance to its nearest seed (ties: lowest index).
+  std::vector<Features> centres;
+  std::size_t first = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    if (walkers[i].weight > walkers[first].weight) first = i;
+  }
+  centres.push_back(f[first]);
+  std::vector<double> nearest(n, std::numeric_limits<double>::infinity());
+  while (centres.size() < keep) {
+    std::size_t best = n;
+    double best_score = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      nearest[i] = std::min(nearest[i], distance2(f[i], centres.back()));
+      const double score = walkers[i].weight * nearest[i];
+      if (score > best_score) {
+        best_score = score;
+        best = i;
+      }
+    }
+    if (best == n) break;  // every walker sits on a seed already
+    centres.push_back(f[best]);
+  }
+  // Nearest-centre passes (Lloyd), weighted.
+  std::vector<std::size_t> label(n, 0);
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::size_t i = 0; i < n; ++i) {
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t c = 0; c < centres.size(); ++c) {
+        const double d = distance2(f[i], centres[c]);
+        if (d < best) {
+          best = d;
+          label[i] = c;
+        }
+      }
+    }
+    if (pass == 1) break;
+    std::vector<Features> sum(centres.size(), Features{});
+    std::vector<double> mass(centres.size(), 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t d = 0; d < f[i].size(); ++d) sum[label[i]][d] += walkers[i].weight * f[i][d];
+      mass[label[i]] += walkers[i].weight;
+    }
+    for (std::size_t c = 0; c < centres.size(); ++c) {
+      if (mass[c] > 0.0) {
+        for (std::size_t d = 0; d < sum[c].size(); ++d) centres[c][d] = sum[c][d] / mass[c];
+      }
+    }
+  }
+  std::vector<Walker> out;
+  for (std::size_t c = 0; c < centres.size(); ++c) {
+    std::vector<const Walker*> members;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (label[i] == c && walkers[i].weight > 0.0) members.push_back(&walkers[i]);
+    }
+    if (!members.empty()) out.push_back(merge(members));
+  }
+
+  // Restore the spread merging removed: scale the clusters' pose deviations
+  // along the children's principal axes (at most 4x, never shrinking).
+  Eigen::Vector3d mean_in, mean_out;
+  const Eigen::Matrix3d cov_in = pose_cov(walkers, mean_in);
+  const Eigen::Matrix3d cov_out = pose_cov(out, mean_out);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov_in);
+  const Eigen::Matrix3d axes = eig.eigenvectors();
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d v = axes.col(k);
+    const double var_in = eig.eigenvalues()(k);
+    const double var_out = v.dot(cov_out * v);
+    if (var_in > 1e-14 && var_out > 1e-14) scale(k) = std::clamp(std::sqrt(var_in / var_out), 1.0, 4.0);
+  }
+  for (Walker& w : out) {
+    const Eigen::Vector3d d = pose_of(w) - mean_out;
+    const Eigen::Vector3d along = axes.transpose() * d;
+    const Eigen::Vector3d moved = axes * (along.cwiseProduct(scale - Eigen::Vector3d::Ones()));
+    w.q.x_m += moved(0);
+    w.q.y_m += moved(1);
+    w.q.theta_rad += moved(2);
+    w.before.x_m += moved(0);
+    w.before.y_m += moved(1);
+    w.before.theta_rad += moved(2);
+  }
+  return out;
+}
+
+NoiseQuadrature noise_quadrature(const PathStepper& stepper, const Walker& start, std::int64_t persistence,
+                                 std::size_t directions, std::size_t keep, std::size_t keep_near, std::size_t cap) {
+  NoiseQuadrature out;
+  directions = std::max<std::size_t>(directions, 1);
+  const std::size_t every = stepper.sample_every();
+  // The mean path: sums of weight × position per sample index.
+  std::vector<double> sx, sy, sw;
+  auto sample = [&](const Walker& w) {
+    if (w.cycles % every != 0) return;
+    const std::size_t i = w.cycles / every;
+    if (sx.size() <= i) {
+      sx.resize(i + 1, 0.0);
+      sy.resize(i + 1, 0.0);
+      sw.resize(i + 1, 0.0);
+    }
+    sx[i] += w.weight * w.q.x_m;
+    sy[i] += w.weight * w.q.y_m;
+    sw[i] += w.weight;
+  };
+
+  const std::size_t length = persistence > 0 ? static_cast<std::size_t>(persistence) : cap + 1;
+  std::vector<Walker> live{start};
+  live.front().weight = 1.0;
+  for (std::size_t segment = 0; !live.empty(); ++segment) {
+    if (segment > 0) ++out.redraws;
+    const std::size_t until = std::min(cap, (segment + 1) * length);
+    std::vector<Walker> children;
+    for (const Walker& parent : live) {
+      for (std::size_t j = 0; j < directions; ++j) {
+        const double angle = 2.0 * kPi * (static_cast<double>(j) + 0.5) / static_cast<double>(directions) +
+                             static_cast<double>(segment) * kGoldenAngleRad;
+        Walker w = parent;
+        w.weight = parent.weight / static_cast<double>(directions);
+        for (;;) {
+          if (const auto exit = stepper.fired(w)) {
+            FinishedPath done{w, *exit, segment, j, 0.0};
+            done.phase_cycles = stepper.settle_phase(done.walker, *exit);
+            out.finished.push_back(done);
+            break;
+          }
+          if (w.cycles >= cap) {
+            out.stuck += w.weight;
+            break;
+          }
+          if (w.cycles >= until) {
+            children.push_back(w);
+            break;
+          }
+          sample(w);
+          stepper.step(w, angle);
+          ++out.cycles_simulated;
+        }
+      }
+    }
+    // Far from the goal and from obstacles the flow is nearly linear in the
+    // pose and `directions` walkers carry its spread; near them (the
+    // slow-down, where a strong NOISE can hold the robot off its goal) the
+    // distribution is shaped by the flow and needs more.
+    const bool near = std::any_of(children.begin(), children.end(), [&](const Walker& w) { return stepper.delicate(w); });
+    live = reduce_walkers(children, near ? keep_near : keep);
+  }
+
+  // Finished paths stay where they ended for the rest of the mean path.
+  for (const FinishedPath& p : out.finished) {
+    for (std::size_t i = (p.walker.cycles + every - 1) / every; i < sx.size(); ++i) {
+      sx[i] += p.walker.weight * p.walker.q.x_m;
+      sy[i] += p.walker.weight * p.walker.q.y_m;
+      sw[i] += p.walker.weight;
+    }
+  }
+  for (std::size_t i = 0; i < sx.size(); ++i) {
+    if (sw[i] > 0.0) out.mean_path.push_back({static_cast<double>(i), sx[i] / sw[i], sy[i] / sw[i]});
+  }
+  return out;
+}
+
+}  // namespace p3at::verifier::engine
