@@ -5,7 +5,8 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
 
 namespace p3at::verifier::engine {
 namespace {
@@ -28,21 +29,29 @@ double distance2(const Features& a, const Features& b) {
   return s;
 }
 
-Eigen::Vector3d pose_of(const Walker& w) { return {w.q.x_m, w.q.y_m, w.q.theta_rad}; }
+using State5 = Eigen::Matrix<double, 5, 1>;
+using Cov5 = Eigen::Matrix<double, 5, 5>;
 
-/// The weighted covariance of the walkers' (x, y, heading).
-Eigen::Matrix3d pose_cov(const std::vector<Walker>& ws, Eigen::Vector3d& mean) {
+/// The part of a walker the restoring map acts on: pose and velocities.
+State5 state_of(const Walker& w) {
+  State5 v;
+  v << w.q.x_m, w.q.y_m, w.q.theta_rad, w.q.trans_mps, w.q.rot_radps;
+  return v;
+}
+
+/// The weighted covariance of the walkers' state_of().
+Cov5 state_cov(const std::vector<Walker>& ws, State5& mean) {
   double total = 0.0;
   mean.setZero();
   for (const Walker& w : ws) {
-    mean += w.weight * pose_of(w);
+    mean += w.weight * state_of(w);
     total += w.weight;
   }
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  Cov5 cov = Cov5::Zero();
   if (!(total > 0.0)) return cov;
   mean /= total;
   for (const Walker& w : ws) {
-    const Eigen::Vector3d d = pose_of(w) - mean;
+    const State5 d = state_of(w) - mean;
     cov += (w.weight / total) * d * d.transpose();
   }
   return cov;
@@ -150,27 +159,31 @@ std::vector<Walker> reduce_walkers(const std::vector<Walker>& walkers, std::size
     if (!members.empty()) out.push_back(merge(members));
   }
 
-  // Restore the spread merging removed: scale the clusters' pose deviations
-  // along the children's principal axes (at most 4x, never shrinking).
-  Eigen::Vector3d mean_in, mean_out;
-  const Eigen::Matrix3d cov_in = pose_cov(walkers, mean_in);
-  const Eigen::Matrix3d cov_out = pose_cov(out, mean_out);
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov_in);
-  const Eigen::Matrix3d axes = eig.eigenvectors();
-  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
-  for (int k = 0; k < 3; ++k) {
-    const Eigen::Vector3d v = axes.col(k);
-    const double var_in = eig.eigenvalues()(k);
-    const double var_out = v.dot(cov_out * v);
-    if (var_in > 1e-14 && var_out > 1e-14) scale(k) = std::clamp(std::sqrt(var_in / var_out), 1.0, 4.0);
-  }
+  // Restore the spread merging removed (the within-cluster part of the
+  // children's covariance): the clusters' deviations from their mean are
+  // mapped by L_in L_out^-1 (Cholesky factors, a small ridge for degenerate
+  // directions), so their pose-and-velocity covariance is exactly the
+  // children's. (Scaling along the children's principal axes instead, which
+  // ignores the clusters' own correlations, compounded at a redraw every
+  // cycle: the duration's spread came out 3x the simulator's.)
+  State5 mean_in, mean_out;
+  const Cov5 cov_in = state_cov(walkers, mean_in);
+  const Cov5 cov_out = state_cov(out, mean_out);
+  const Cov5 ridge = (1e-14 + 1e-9 * cov_in.trace()) * Cov5::Identity();
+  const Eigen::LLT<Cov5> l_in(cov_in + ridge);
+  const Eigen::LLT<Cov5> l_out(cov_out + ridge);
+  if (l_in.info() != Eigen::Success || l_out.info() != Eigen::Success) return out;
+  const Cov5 lo = l_out.matrixL();
+  const Cov5 map = Cov5(l_in.matrixL()) * lo.inverse();
+  if (!map.allFinite()) return out;
   for (Walker& w : out) {
-    const Eigen::Vector3d d = pose_of(w) - mean_out;
-    const Eigen::Vector3d along = axes.transpose() * d;
-    const Eigen::Vector3d moved = axes * (along.cwiseProduct(scale - Eigen::Vector3d::Ones()));
+    const State5 d = state_of(w) - mean_out;
+    const State5 moved = map * d - d;
     w.q.x_m += moved(0);
     w.q.y_m += moved(1);
     w.q.theta_rad += moved(2);
+    w.q.trans_mps += moved(3);
+    w.q.rot_radps += moved(4);
     w.before.x_m += moved(0);
     w.before.y_m += moved(1);
     w.before.theta_rad += moved(2);

@@ -50,9 +50,9 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const Walker& start
 /// Reduces weighted walkers (all at the same cycle) to at most `keep`: seeds
 /// by weighted farthest point (the heaviest first), two nearest-centre
 /// passes, each cluster moment-matched (pose, velocities, turn, error), then
-/// the clusters' (x, y, heading) spread scaled along the children's
-/// principal axes so its covariance is the children's (merging would
-/// otherwise shrink the spread at every redraw). Deterministic; the total
+/// the clusters' deviations mapped linearly so that the covariance of their
+/// pose and velocities is exactly the children's (merging would otherwise
+/// shrink the spread at every redraw). Deterministic; the total
 /// weight and the weighted mean pose are kept.
 std::vector<Walker> reduce_walkers(const std::vector<Walker>& walkers, std::size_t keep);
 
