@@ -261,12 +261,44 @@ TEST_SUITE("evaluation") {
     CHECK(better->holds);
     CHECK(better->probability == doctest::Approx(p_near).epsilon(1e-5));
     CHECK(bare > 0.5);
-    // Ordering reversed: t1 < t3 fails, and the bare group with it.
+    // Ordering reversed: t1 < t3 fails, and the bare group with it. The
+    // bare group is one event about two dependent conditions: t1 < t3 <= 200
+    // implies t1 <= 200, so P = P(t1 < t3, t3 <= 200) <= P(t1 < t3) =
+    // Phi(-45 / sqrt(61)), not that times Phi(1) (independence). (doctest's
+    // Approx has an absolute scale of 1: compare such small numbers as ratios.)
     const auto late = v::evaluate_criterion(
         c, two_robots(), one_branch(robot(195, 25, 19.75, 18, 0.25), robot(150, 36, 20, 17.5, 0.25)), 0.5);
     REQUIRE(late.ok());
     CHECK_FALSE(late->holds);
-    CHECK(late->probability == doctest::Approx(phi(1.0) * phi(50.0 / 6.0) * phi(-45.0 / std::sqrt(61.0))).epsilon(1e-5));
+    const double ordered = phi(-45.0 / std::sqrt(61.0));  // P(t3 > 200) ~ 4e-17 is below this ratio's precision
+    CHECK(late->probability / ordered == doctest::Approx(1.0).epsilon(1e-3));
+  }
+
+  TEST_CASE("time events that share a robot's time are dependent: computed jointly, not as a product") {
+    // t1 ~ N(195, 5^2), t3 ~ N(198, 6^2), independent. P(t1 <= 200 and t3 <=
+    // 200 and t1 < t3): since t1 < t3 <= 200 implies t1 <= 200, it is
+    // the integral over t3 <= 200 of the density of t3 times P(t1 < t3) =
+    // Phi((t3 - 195) / 5), computed here by the trapezoid rule on a fine
+    // grid. The independence product Phi(1) Phi(2/6) Phi(3/sqrt(61)) is
+    // wrong by 0.043.
+    const v::Criterion c = v::parse_criterion(kEq5, "eq5.crit");
+    const auto verdict = v::evaluate_criterion(
+        c, two_robots(), one_branch(robot(195, 25, 19.75, 18, 0.01), robot(198, 36, 20, 17.5, 0.01)), 0.5);
+    REQUIRE(verdict.ok());
+    double exact = 0.0;
+    const double h = 0.001;
+    for (double t3 = 198.0 - 60.0; t3 <= 200.0; t3 += h) {
+      const double w = (t3 == 198.0 - 60.0 || t3 + h > 200.0) ? 0.5 : 1.0;
+      exact += w * h * std::exp(-0.5 * (t3 - 198.0) * (t3 - 198.0) / 36.0) / (6.0 * std::sqrt(2.0 * M_PI)) *
+               phi((t3 - 195.0) / 5.0);
+    }
+    const double product = phi(1.0) * phi(2.0 / 6.0) * phi(3.0 / std::sqrt(61.0));
+    REQUIRE(std::abs(exact - product) > 0.04);
+    // The explanation names the bare group first, with its probability.
+    const std::string e = verdict->explanation;
+    const std::size_t at = e.find("t1 < t3) = ");
+    REQUIRE(at != std::string::npos);
+    CHECK(std::stod(e.substr(at + 11)) == doctest::Approx(exact).epsilon(2e-4));
   }
 
   TEST_CASE("branches are weighted; pruned, blocked and unfinished mass count as failure") {

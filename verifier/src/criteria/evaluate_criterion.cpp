@@ -3,6 +3,8 @@
 // constraint group's probability branch by branch.
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <cstdio>
 #include <map>
 #include <optional>
@@ -231,6 +233,140 @@ class Evaluator {
     return 0.0;
   }
 
+  static bool is_time(const detail::Event& e) {
+    return e.kind == detail::Event::Kind::time_bound || e.kind == detail::Event::Kind::time_order;
+  }
+
+  /// P(every time event) in one branch, the robots' finish times being
+  /// independent mixtures. Events are split into groups that share no
+  /// variable (independent, so their probabilities multiply); within a
+  /// group, each variable but the last is integrated out on a grid of
+  /// cells of exact probability (evaluated at each cell's conditional
+  /// mean), and the last one's events become an interval of its CDF. A
+  /// group of more than three robots' times falls back to the Fréchet lower
+  /// bound max(0, sum P - (n - 1)): conservative, never optimistic.
+  double joint_time_probability(const Branch& b, const std::vector<detail::Event>& events) const {
+    std::vector<const detail::Event*> time_events;
+    for (const detail::Event& e : events) {
+      if (is_time(e)) time_events.push_back(&e);
+    }
+    if (time_events.empty()) return 1.0;
+    // Variables (robot indices) and connected groups.
+    std::vector<std::size_t> group(time_events.size());
+    for (std::size_t i = 0; i < group.size(); ++i) group[i] = i;
+    const auto root = [&](std::size_t i) {
+      while (group[i] != i) i = group[i];
+      return i;
+    };
+    const auto shares = [&](const detail::Event& x, const detail::Event& y) {
+      const auto vars = [&](const detail::Event& e) {
+        std::vector<std::size_t> v{bound_.at(e.a).robot};
+        if (e.kind == detail::Event::Kind::time_order) v.push_back(bound_.at(e.b).robot);
+        return v;
+      };
+      for (const std::size_t u : vars(x)) {
+        for (const std::size_t w : vars(y)) {
+          if (u == w) return true;
+        }
+      }
+      return false;
+    };
+    for (std::size_t i = 0; i < time_events.size(); ++i) {
+      for (std::size_t j = i + 1; j < time_events.size(); ++j) {
+        if (shares(*time_events[i], *time_events[j])) group[root(j)] = root(i);
+      }
+    }
+    double p = 1.0;
+    for (std::size_t g = 0; g < time_events.size(); ++g) {
+      if (root(g) != g) continue;
+      std::vector<const detail::Event*> members;
+      std::vector<std::size_t> vars;
+      for (std::size_t i = 0; i < time_events.size(); ++i) {
+        if (root(i) != g) continue;
+        members.push_back(time_events[i]);
+        for (const std::string* name : {&time_events[i]->a, &time_events[i]->b}) {
+          if (name->empty()) continue;
+          const std::size_t r = bound_.at(*name).robot;
+          if (std::find(vars.begin(), vars.end(), r) == vars.end()) vars.push_back(r);
+        }
+      }
+      if (members.size() == 1) {  // one event: its closed form
+        p *= event_probability(b, *members.front());
+        continue;
+      }
+      if (vars.size() > 3) {
+        double sum = 0.0;
+        for (const detail::Event* e : members) sum += event_probability(b, *e);
+        p *= std::max(0.0, sum - static_cast<double>(members.size() - 1));
+        continue;
+      }
+      std::vector<double> value(vars.size(), 0.0);
+      p *= integrate(b, members, vars, value, 0);
+    }
+    return p;
+  }
+
+  /// Integrates out vars[k..] given value[0..k).
+  double integrate(const Branch& b, const std::vector<const detail::Event*>& members, const std::vector<std::size_t>& vars,
+                   std::vector<double>& value, std::size_t k) const {
+    const auto index_of = [&](const std::string& name) {
+      const std::size_t r = bound_.at(name).robot;
+      return static_cast<std::size_t>(std::find(vars.begin(), vars.end(), r) - vars.begin());
+    };
+    const Mixture1& t = b.robots[vars[k]].finish_time_s;
+    if (k + 1 == vars.size()) {
+      // The last variable: every event is a bound on it, or already decided.
+      double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+      for (const detail::Event* e : members) {
+        const std::size_t ia = index_of(e->a);
+        const bool less = detail::is_less(e->op);
+        if (e->kind == detail::Event::Kind::time_bound) {
+          // a + offset OP value: a bound on a (the last variable).
+          (less ? hi : lo) = less ? std::min(hi, e->value - e->offset) : std::max(lo, e->value - e->offset);
+          continue;
+        }
+        const std::size_t ib = index_of(e->b);
+        if (ia == k && ib == k) return 0.0;  // not produced by the parser (a variable compared with itself)
+        if (ia == k) {  // a + offset OP value[b]
+          const double bound = value[ib] - e->offset;
+          if (less) hi = std::min(hi, bound); else lo = std::max(lo, bound);
+        } else if (ib == k) {  // value[a] + offset OP b
+          const double bound = value[ia] + e->offset;
+          if (less) lo = std::max(lo, bound); else hi = std::min(hi, bound);
+        } else {
+          const bool holds = less ? value[ia] + e->offset < value[ib] : value[ia] + e->offset > value[ib];
+          if (!holds) return 0.0;
+        }
+      }
+      if (!(lo < hi)) return 0.0;
+      return std::max(0.0, (std::isfinite(hi) ? t.cdf(hi) : 1.0) - (std::isfinite(lo) ? t.cdf(lo) : 0.0));
+    }
+    // Integrate this variable out: per component, cells of exact mass over
+    // mean +- 8 sd, each evaluated at its conditional mean.
+    const std::size_t cells = vars.size() == 2 ? 400 : 48;
+    double total = 0.0;
+    for (const Component1& c : t.components) {
+      if (!(c.weight > 0.0)) continue;
+      if (!(c.var > 0.0)) {
+        value[k] = c.mean;
+        total += c.weight * integrate(b, members, vars, value, k + 1);
+        continue;
+      }
+      const double sd = std::sqrt(c.var);
+      constexpr double kSpan = 8.0;
+      for (std::size_t i = 0; i < cells; ++i) {
+        const double z0 = -kSpan + 2.0 * kSpan * static_cast<double>(i) / static_cast<double>(cells);
+        const double z1 = -kSpan + 2.0 * kSpan * static_cast<double>(i + 1) / static_cast<double>(cells);
+        const double mass = normal_cdf(z1) - normal_cdf(z0);
+        if (!(mass > 0.0)) continue;
+        const double z = (normal_pdf(z0) - normal_pdf(z1)) / mass;  // the cell's conditional mean
+        value[k] = c.mean + sd * z;
+        total += c.weight * mass * integrate(b, members, vars, value, k + 1);
+      }
+    }
+    return total;
+  }
+
   double probability(const std::vector<detail::Event>& events) const {
     double total = 0.0;
     for (const Branch& b : o_.branches) {
@@ -239,8 +375,14 @@ class Evaluator {
       bool finished = true;
       for (const std::size_t r : robots_) finished = finished && b.robots[r].finished;
       if (!finished) continue;
-      double p = 1.0;
-      for (const detail::Event& e : events) p *= event_probability(b, e);
+      // Time events that share a robot's finish time are dependent (t1 <= 200
+      // and t1 < t3 both ask about t1): computed jointly. Events on
+      // different robots' times, and position events, are independent
+      // within a branch as the model carries them.
+      double p = joint_time_probability(b, events);
+      for (const detail::Event& e : events) {
+        if (!is_time(e)) p *= event_probability(b, e);
+      }
       total += b.weight * std::clamp(p, 0.0, 1.0);
     }
     return std::clamp(total, 0.0, 1.0);
