@@ -323,8 +323,15 @@ TEST_SUITE("evaluation") {
     CHECK(other->probability == doctest::Approx(0.5 * phi(10.0 / 6.0) + 0.3 * phi(-5.0 / 4.0) + 0.15).epsilon(1e-6));
   }
 
-  TEST_CASE("eq. (6): safety holds at every separation sample and at the end") {
+  TEST_CASE("eq. (6): safety must hold at every moment at once: a conservative bound over the samples and the end") {
+    // P(|p - q| > 1 at all times). Only the samples' marginals are known, so
+    // the verifier uses Boole's inequality, P(never close) >= 1 - sum of
+    // P(close at a sample), with "close" widened by the slack two robots at
+    // 0.3 m/s can close between samples a second apart (0.3 m). For a
+    // difference D ~ N(0, s^2 I), P(|D| <= r) = 1 - exp(-r^2 / (2 s^2)).
     const v::Criterion c = v::parse_criterion(kEq6, "eq6.crit");
+    const double r = 1.0 + 0.5 * (0.3 + 0.3);
+    const auto close_at = [&](double s2) { return 1.0 - std::exp(-r * r / (2.0 * s2)); };
     v::SystemOutcome o = one_branch(robot(150, 25, 0, 0, 1.0), robot(160, 25, 0, 0, 1.0));
     v::SeparationSample close;
     close.robot_i = 1;  // either order of the pair
@@ -338,15 +345,14 @@ TEST_SUITE("evaluation") {
     o.branches[0].separations = {wide, close};
     auto verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
     REQUIRE(verdict.ok());
-    // The closest moment decides: P(|D| > 1) = exp(-1 / (2 * 0.25)).
-    CHECK(verdict->probability == doctest::Approx(std::exp(-2.0)).epsilon(1e-5));
+    CHECK(verdict->probability == doctest::Approx(0.0));  // the bound is vacuous: 1 - 0.34 - 1.0 - 0.19 < 0
     CHECK_FALSE(verdict->holds);
-    // Without that moment, the end (difference variance 1 + 1) is the closest.
+    // Without that moment: the wide sample and the end (difference variance 1 + 1).
     o.branches[0].separations = {wide};
     verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
     REQUIRE(verdict.ok());
-    CHECK(verdict->probability == doctest::Approx(std::exp(-0.25)).epsilon(1e-5));
-    CHECK_FALSE(verdict->holds);  // 0.7788, not > 0.8
+    CHECK(verdict->probability == doctest::Approx(1.0 - close_at(4.0) - close_at(2.0)).epsilon(1e-5));
+    CHECK_FALSE(verdict->holds);
     // Robots that end far apart and never came close: safe.
     o.branches[0].robots[1].final_position.mean = Eigen::Vector2d(10, 0);
     o.branches[0].separations.clear();
@@ -355,6 +361,36 @@ TEST_SUITE("evaluation") {
     CHECK(verdict->holds);
     CHECK(verdict->probability == doctest::Approx(1.0).epsilon(1e-6));
   }
+
+  TEST_CASE("eq. (6): several moments each 95 % safe are not 95 % safe together") {
+    // Two independent-looking close passes, each with P(close) = 0.05 at the
+    // widened distance: the smallest marginal (0.95, used before) says the
+    // criterion holds at 0.9; the probability of being apart at both can be
+    // as low as 0.9, so the verifier must not say more than 1 - 0.05 - 0.05.
+    const v::Criterion c = v::parse_criterion(kEq6, "eq6.crit");
+    const double r = 1.3;
+    const double s2 = r * r / (2.0 * -std::log(1.0 - 0.05));  // P(|D| <= r) = 0.05
+    v::SystemOutcome o = one_branch(robot(150, 25, 0, 0, 1e-6), robot(160, 25, 50, 0, 1e-6));
+    v::SeparationSample pass;
+    pass.robot_i = 0;
+    pass.robot_j = 1;
+    pass.difference.cov = s2 * Eigen::Matrix2d::Identity();
+    o.branches[0].separations = {pass, pass};
+    const auto verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
+    REQUIRE(verdict.ok());
+    CHECK(verdict->probability == doctest::Approx(0.9).epsilon(1e-4));
+    // A required separation the recorded samples cannot vouch for (they are
+    // kept only within 6 m): refused, probability 0.
+    const v::Criterion far = v::parse_criterion(
+        "criterion far\nnetwork Delay<t1> ; (Delay<t2> # At<robot1, p>) |\n        Delay<t3> ; (Delay<t4> # At<robot2, q>)\n"
+        "constraints\n  t1, t3 > 0\n  P(|p - q| > 4.0) > 0.8\n",
+        "far.crit");
+    const auto refused = v::evaluate_criterion(far, two_robots(), o, 0.5);
+    REQUIRE(refused.ok());
+    CHECK(refused->probability == doctest::Approx(0.0));
+    CHECK_FALSE(refused->holds);
+  }
+
 
   TEST_CASE("time forms: offsets, reversed sides, lower bounds") {
     const std::string head =

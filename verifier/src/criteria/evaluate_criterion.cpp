@@ -214,19 +214,44 @@ class Evaluator {
         return detail::is_less(e.op) ? within : 1.0 - within;
       }
       case detail::Event::Kind::distance_between: {
-        // Safety (eq. 6): at every sampled moment of the branch and at the end.
+        // Safety (eq. 6): "for all times", over the separation samples the
+        // evaluation recorded along the branch (about every second while a
+        // robot moves, at each event, and at the end).
         const std::size_t i = bound_.at(e.a).robot, j = bound_.at(e.b).robot;
-        const auto sample = [&](const Gaussian2& difference) {
-          const double within = probability_within(difference, Eigen::Vector2d::Zero(), e.value);
-          return detail::is_less(e.op) ? within : 1.0 - within;
+        const auto within = [&](const Gaussian2& difference, double r) {
+          return probability_within(difference, Eigen::Vector2d::Zero(), r);
         };
         Gaussian2 last;
         last.mean = b.robots[i].final_position.mean - b.robots[j].final_position.mean;
         last.cov = b.robots[i].final_position.cov + b.robots[j].final_position.cov;
-        double p = sample(last);
+        std::vector<const Gaussian2*> moments{&last};
         for (const SeparationSample& s : b.separations) {
-          if ((s.robot_i == i && s.robot_j == j) || (s.robot_i == j && s.robot_j == i)) p = std::min(p, sample(s.difference));
+          if ((s.robot_i == i && s.robot_j == j) || (s.robot_i == j && s.robot_j == i)) moments.push_back(&s.difference);
         }
+        if (!detail::is_less(e.op)) {
+          // P(never closer than d) >= 1 - sum over the samples of P(closer
+          // than d + slack) (Boole's inequality: the minimum over samples of
+          // the marginal probability, used before, is an upper bound, an
+          // optimistic answer). Between two samples a second apart the
+          // robots' distance can shrink by at most their two top speeds
+          // times half a second: the slack. The evaluation records samples
+          // only where the mean separation is within kSeparationHorizonM
+          // (sequencer.cpp, 6 m); a distance beyond half of it cannot be
+          // checked from them, and is refused (probability 0).
+          constexpr double kSampleSpacingS = 1.0;
+          constexpr double kSeparationHorizonM = 6.0;
+          const double slack = 0.5 * kSampleSpacingS * (m_.robots[i].max_speed_mps + m_.robots[j].max_speed_mps);
+          const double reach = e.value + slack;
+          if (reach > 0.5 * kSeparationHorizonM) return 0.0;
+          double close = 0.0;
+          for (const Gaussian2* d : moments) close += within(*d, reach);
+          return std::max(0.0, 1.0 - close);
+        }
+        // |p - q| < d at all times: the smallest marginal probability over
+        // the samples (an upper bound of the joint: optimistic; the samples
+        // also leave out moments more than 6 m apart).
+        double p = 1.0;
+        for (const Gaussian2* d : moments) p = std::min(p, within(*d, e.value));
         return p;
       }
     }
