@@ -79,17 +79,41 @@ double expected_distance(const SystemOutcome& o, std::size_t i, const Eigen::Vec
   return w > 0.0 ? sum / w : 0.0;
 }
 
+/// The control cycle every robot shares (0 when they differ). Every event of
+/// the mission happens on a cycle tick (the executive checks its triggers once
+/// per cycle, message delays are seen in whole cycles), so the completion time
+/// is a whole number of cycles from launch.
+double shared_cycle_s(const Models& models) {
+  double c = 0.0;
+  for (const RobotModel& m : models.robots) {
+    if (c == 0.0) c = m.kinematics.cycle_s;
+    if (m.kinematics.cycle_s != c) return 0.0;
+  }
+  return c > 0.0 ? c : 0.0;
+}
+
+/// P(t <= Tmax) for a completion time on the cycle lattice, from the
+/// continuous mixture that carries it (the durations' components have
+/// widths, issue 13 item 10): the mass of the lattice points at or below Tmax
+/// is the mixture's mass below the midpoint to the next one (a continuity
+/// correction). Without it a short mission's curve passes between the steps
+/// of the true staircase, up to half a cycle's mass off.
+double time_cdf(const Mixture1& t, double tmax, double cycle_s) {
+  if (!(cycle_s > 0.0)) return t.cdf(tmax);
+  return t.cdf(cycle_s * std::floor(tmax / cycle_s + 1e-9) + 0.5 * cycle_s);
+}
+
 /// P(t <= Tmax): needs only the completion times, no disk integrals.
-double time_probability(const SystemOutcome& o, double tmax) {
+double time_probability(const SystemOutcome& o, double tmax, double cycle_s) {
   double p = 0.0;
-  for (const Branch& b : o.branches) p += b.weight * b.completion_time_s.cdf(tmax);
+  for (const Branch& b : o.branches) p += b.weight * time_cdf(b.completion_time_s, tmax, cycle_s);
   return p;
 }
 
-Point probabilities(const SystemOutcome& o, const mission::Mission& mission, double tmax, double rmax) {
+Point probabilities(const SystemOutcome& o, const mission::Mission& mission, double tmax, double rmax, double cycle_s) {
   Point p;
   for (const Branch& b : o.branches) {
-    const double pt = b.completion_time_s.cdf(tmax);
+    const double pt = time_cdf(b.completion_time_s, tmax, cycle_s);
     const double pr = branch_radius(b, mission, rmax);
     p.time += b.weight * pt;
     p.radius += b.weight * pr;
@@ -166,7 +190,8 @@ Result<VerifyResult> verify(const mission::Mission& mission, const Models& model
   if (!evaluated) return evaluated.error();
   const SystemOutcome& o = *evaluated;
 
-  const Point p = probabilities(o, mission, r.tmax_s, r.rmax_m);
+  const double cycle_s = shared_cycle_s(models);
+  const Point p = probabilities(o, mission, r.tmax_s, r.rmax_m, cycle_s);
   r.p_time = p.time;
   r.p_radius = p.radius;
   r.p_joint = p.joint;
@@ -211,7 +236,7 @@ Result<VerifyResult> verify(const mission::Mission& mission, const Models& model
     Grid g;
     g.tmax = options.tmax_grid.empty() ? std::vector<double>{r.tmax_s} : options.tmax_grid;
     g.rmax = options.rmax_grid.empty() ? std::vector<double>{r.rmax_m} : options.rmax_grid;
-    for (const double t : g.tmax) g.p_time.push_back(time_probability(o, t));
+    for (const double t : g.tmax) g.p_time.push_back(time_probability(o, t, cycle_s));
     // Per-branch radius probabilities are shared by every Tmax: compute them once.
     std::vector<std::vector<double>> radius(o.branches.size());
     for (std::size_t b = 0; b < o.branches.size(); ++b) {
@@ -226,7 +251,7 @@ Result<VerifyResult> verify(const mission::Mission& mission, const Models& model
       std::vector<double> row(g.rmax.size(), 0.0);
       std::vector<Region> regions;
       for (std::size_t b = 0; b < o.branches.size(); ++b) {
-        const double pt = o.branches[b].completion_time_s.cdf(t);
+        const double pt = time_cdf(o.branches[b].completion_time_s, t, cycle_s);
         for (std::size_t j = 0; j < g.rmax.size(); ++j) row[j] += o.branches[b].weight * pt * radius[b][j];
       }
       for (const double v : row) regions.push_back(classify(v, options));
