@@ -232,18 +232,11 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   const bool noisy = go != nullptr && go->noise_gain != 0.0;
   const std::int64_t persistence = noisy ? go->noise_persistence_cycles : 0;
   const double cycle_s = ctx.model->kinematics.cycle_s;
-  // A short leg whose NOISE is held throughout has a duration spread of a
-  // few cycles, which 8 directions resolve only as a coarse staircase
-  // (tests/data/accuracy/short_legs, 2,000 runs: time curve 0.059 with 8,
-  // 0.047 with 16, 0.045 with 32): twice the directions there, where the
-  // paths are cheap (at most 30 s nominal, so at most ~16 x 300 cycles).
-  std::size_t directions = noisy ? std::max<std::size_t>(1, ctx.models->budget.noise_sigma_points) : 1;
-  if (noisy && go != nullptr) {
-    const double nominal_s =
-        std::hypot(go->goal.x_m - start.x_m, go->goal.y_m - start.y_m) / std::max(robot.max_speed_mps, 1e-3);
-    const bool held_throughout = static_cast<double>(persistence) * cycle_s >= 2.0 * nominal_s;
-    if (held_throughout && nominal_s <= 30.0) directions *= 2;
-  }
+  // (Twice the directions for short held legs brought
+  // tests/data/accuracy_open/short_legs' time curve from 0.059 to 0.047, but
+  // doubled bench_verifier's CPU: Bounding Overwatch's point 11 -> 19 ms,
+  // relay 32 x 20 0.66 -> 1.3 s. Not done.)
+  const std::size_t directions = noisy ? std::max<std::size_t>(1, ctx.models->budget.noise_sigma_points) : 1;
 
   Walker entry;
   entry.q = start;
