@@ -192,8 +192,10 @@ std::vector<Walker> reduce_walkers(const std::vector<Walker>& walkers, std::size
 }
 
 NoiseQuadrature noise_quadrature(const PathStepper& stepper, const Walker& start, std::int64_t persistence,
-                                 std::size_t directions, std::size_t keep, std::size_t keep_near, std::size_t cap) {
+                                 std::size_t directions, std::size_t keep, std::size_t keep_near, std::size_t cap,
+                                 LegTrajectory* record) {
   NoiseQuadrature out;
+  if (record != nullptr) record->paths.assign(std::max<std::size_t>(directions, 1), {});
   directions = std::max<std::size_t>(directions, 1);
   const std::size_t every = stepper.sample_every();
   // The mean path: sums of weight × position per sample index.
@@ -224,10 +226,21 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const Walker& start
                              static_cast<double>(segment) * kGoldenAngleRad;
         Walker w = parent;
         w.weight = parent.weight / static_cast<double>(directions);
+        // Recorded until the robot has come to rest for good (a leg waiting
+        // at its goal for a message): beyond the record the pose is held.
+        std::vector<TrajectoryPoint>* trace =
+            (record != nullptr && segment == 0) ? &record->paths[j] : nullptr;
         for (;;) {
+          if (trace != nullptr) {
+            if (trace->size() >= 2 && at_rest(w.q) && at_rest(trace->back().base)) {
+              trace = nullptr;
+            } else {
+              trace->push_back({w.q, w.error});
+            }
+          }
           if (const auto exit = stepper.fired(w)) {
             FinishedPath done{w, *exit, segment, j, 0.0};
-            done.phase_cycles = stepper.settle_phase(done.walker, *exit);
+            done.phase_cycles = stepper.settle_phase(done.walker, *exit, &done.crossing_c, &done.step);
             out.finished.push_back(done);
             break;
           }

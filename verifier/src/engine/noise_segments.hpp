@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/leg_trajectory.hpp"
 #include "engine/path_stepper.hpp"
 
 namespace p3at::verifier::engine {
@@ -32,6 +33,8 @@ struct FinishedPath {
   std::size_t segment = 0;       ///< the NOISE draw it fired under (0: the first)
   std::size_t direction = 0;     ///< the quadrature direction of that draw
   double phase_cycles = 0.0;     ///< settle_phase()'s offset
+  double crossing_c = -1.0;      ///< the crossing's fraction into the last cycle (-1: not crossed by moving toward it)
+  Eigen::Vector3d step = Eigen::Vector3d::Zero();  ///< the last cycle's step before the phase move
 };
 
 struct NoiseQuadrature {
@@ -44,8 +47,15 @@ struct NoiseQuadrature {
 
 /// The quadrature of one motion state from `start` (weight 1). For a state
 /// without NOISE pass directions = 1 and persistence 0 (held).
+/// `record`: each direction's pose and error under the FIRST draw (the whole
+/// state when nothing redraws; the caller runs the held quadrature for it
+/// otherwise): pose and
+/// error after every cycle from the entry, until its exit fires or the robot
+/// has come to rest for good (leg_trajectory.hpp; for states a message can
+/// interrupt).
 NoiseQuadrature noise_quadrature(const PathStepper& stepper, const Walker& start, std::int64_t persistence,
-                                 std::size_t directions, std::size_t keep, std::size_t keep_near, std::size_t cap);
+                                 std::size_t directions, std::size_t keep, std::size_t keep_near, std::size_t cap,
+                                 LegTrajectory* record = nullptr);
 
 /// Reduces weighted walkers (all at the same cycle) to at most `keep`: seeds
 /// by weighted farthest point (the heaviest first), two nearest-centre

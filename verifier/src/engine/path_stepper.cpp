@@ -57,7 +57,9 @@ std::optional<std::size_t> PathStepper::fired(const Walker& w) const {
   return std::nullopt;
 }
 
-double PathStepper::settle_phase(Walker& w, std::size_t transition) const {
+double PathStepper::settle_phase(Walker& w, std::size_t transition, double* crossing_c, Eigen::Vector3d* step) const {
+  if (crossing_c) *crossing_c = -1.0;
+  if (step) *step = Eigen::Vector3d(w.q.x_m - w.before.x_m, w.q.y_m - w.before.y_m, w.q.theta_rad - w.before.theta_rad);
   // The executive checks a trigger once per cycle, and where in that cycle a
   // real run crosses the threshold is as good as random: with the crossing a
   // fraction c into the last cycle (linear between the two checks), the check
@@ -77,7 +79,9 @@ double PathStepper::settle_phase(Walker& w, std::size_t transition) const {
     return 0.0;
   }
   if (!(from > threshold) || !(from > to)) return 0.0;  // fired at once, or not by moving toward it
-  const double phase = std::clamp((from - threshold) / (from - to), 0.0, 1.0) - 0.5;
+  const double c = std::clamp((from - threshold) / (from - to), 0.0, 1.0);
+  if (crossing_c) *crossing_c = c;
+  const double phase = c - 0.5;
   w.q.x_m += phase * (w.q.x_m - w.before.x_m);
   w.q.y_m += phase * (w.q.y_m - w.before.y_m);
   w.q.theta_rad += phase * (w.q.theta_rad - w.before.theta_rad);

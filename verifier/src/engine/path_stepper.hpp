@@ -11,6 +11,8 @@
 #include <cstddef>
 #include <optional>
 
+#include <Eigen/Core>
+
 #include "engine/base_motion.hpp"
 #include "engine/error_state.hpp"
 #include "engine/state_analysis.hpp"
@@ -37,8 +39,12 @@ class PathStepper {
   std::optional<std::size_t> fired(const Walker& w) const;
   /// Moves the walker's pose to the trigger's expected firing within its
   /// last cycle (crossing interpolated, firing on average half a cycle
-  /// after it) and returns that offset in cycles, in [-0.5, 0.5].
-  double settle_phase(Walker& w, std::size_t transition) const;
+  /// after it) and returns that offset in cycles, in [-0.5, 0.5]. When the
+  /// trigger was crossed by moving toward it, `crossing_c` is the crossing's
+  /// fraction into the last cycle (else -1) and `step` the last cycle's step
+  /// (x, y, heading) before the move, for settle_phases() (trigger_phase.hpp).
+  double settle_phase(Walker& w, std::size_t transition, double* crossing_c = nullptr,
+                      Eigen::Vector3d* step = nullptr) const;
   /// One cycle under NOISE direction `noise_angle_rad`.
   void step(Walker& w, double noise_angle_rad) const;
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <type_traits>
 #include <variant>
@@ -9,6 +10,7 @@
 #include <Eigen/Cholesky>
 
 #include "engine/noise_segments.hpp"
+#include "engine/trigger_phase.hpp"
 
 namespace p3at::verifier::engine {
 namespace {
@@ -224,6 +226,47 @@ std::vector<Eigen::Vector2d> equal_weight_ends(const std::vector<FinishedPath>& 
   return out;
 }
 
+/// The expected firing's phase for the held quadrature (trigger_phase.hpp):
+/// each path's crossing time varies over its direction's arc by about the
+/// difference to its neighbours' (the paths are on a circle of NOISE
+/// directions), spread sd = |T_next - T_prev| / 2 / sqrt(12); the end pose is
+/// moved, along the last step, from the half-cycle average settle_phase()
+/// assumed to the firing that spread gives (the one deterministic check when
+/// all paths are alike).
+void settle_phases(std::vector<FinishedPath>& done, std::size_t directions) {
+  std::vector<FinishedPath*> by_direction(directions, nullptr);
+  for (FinishedPath& p : done) {
+    if (p.direction < directions) by_direction[p.direction] = &p;
+  }
+  const auto crossing = [](const FinishedPath& p) {
+    return static_cast<double>(p.walker.cycles) - 1.0 + std::max(p.crossing_c, 0.0);
+  };
+  const std::size_t n = directions;
+  std::vector<double> offsets(n, 0.0);
+  for (std::size_t j = 0; j < n; ++j) {
+    FinishedPath* p = by_direction[j];
+    if (!p || p->crossing_c < 0.0) continue;
+    const FinishedPath* prev = by_direction[(j + n - 1) % n];
+    const FinishedPath* next = by_direction[(j + 1) % n];
+    double sd = 0.0;
+    if (n > 1 && prev && next && prev->exit == p->exit && next->exit == p->exit) {
+      sd = std::abs(crossing(*next) - crossing(*prev)) / 2.0 / std::sqrt(12.0);
+    } else if (n > 1) {
+      sd = 1.0;  // neighbours that leave differently: the direction's arc spans a lot
+    }
+    offsets[j] = crossing(*p) + expected_check_gap(crossing(*p), sd) - static_cast<double>(p->walker.cycles);
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    FinishedPath* p = by_direction[j];
+    if (!p || p->crossing_c < 0.0) continue;
+    const double move = offsets[j] - p->phase_cycles;
+    p->walker.q.x_m += move * p->step(0);
+    p->walker.q.y_m += move * p->step(1);
+    p->walker.q.theta_rad += move * p->step(2);
+    p->phase_cycles = offsets[j];
+  }
+}
+
 StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const BaseState& start,
                              const ErrorState& error_start) {
   const mission::RobotSpec& robot = *ctx.robot;
@@ -249,8 +292,15 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   // radius went back to 0.069. Without a redraw (persistence at least the
   // leg) nothing is merged and this is the held quadrature.
   const std::size_t keep = 4 * directions;
-  const NoiseQuadrature quad =
-      noise_quadrature(stepper, entry, persistence, directions, keep, keep, cycle_cap(ctx, state, start));
+  const std::size_t cap = cycle_cap(ctx, state, start);
+  // A state a message can interrupt keeps each direction's pose versus time
+  // (engine/interruption): from the first draw when nothing redraws, else
+  // from the held quadrature (one direction per path for the whole state).
+  const bool interruptible = has_trigger_kind(robot, state, mission::TriggerKind::notified);
+  auto trajectory = interruptible ? std::make_shared<LegTrajectory>() : nullptr;
+  if (trajectory) trajectory->cycle_s = cycle_s;
+  NoiseQuadrature quad =
+      noise_quadrature(stepper, entry, persistence, directions, keep, keep, cap, trajectory.get());
 
   StateAnalysis a;
   a.cycles_simulated = quad.cycles_simulated;
@@ -265,13 +315,24 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   // 0.05 of it. Where a held direction pins the robot (a strong NOISE in a
   // long slow-down) there are no held ends to use.
   NoiseQuadrature held;
-  const NoiseQuadrature* ends = &quad;
+  NoiseQuadrature* ends = &quad;
   const bool draw_spans_approach =
       go != nullptr && static_cast<double>(persistence) * cycle_s * robot.max_speed_mps >= 2.0 * go->dropoff_m;
-  if (quad.redraws > 0 && draw_spans_approach) {
-    held = noise_quadrature(stepper, entry, 0, directions, directions, directions, cycle_cap(ctx, state, start));
+  if (quad.redraws > 0 && (draw_spans_approach || trajectory)) {
+    held = noise_quadrature(stepper, entry, 0, directions, directions, directions, cap, trajectory.get());
     a.cycles_simulated += held.cycles_simulated;
-    if (held.stuck <= 0.0) ends = &held;
+    if (draw_spans_approach && held.stuck <= 0.0) ends = &held;
+  }
+  a.trajectory = trajectory;
+  if (ends->redraws == 0) settle_phases(ends->finished, directions);
+  // Headings are continuous per path, but two paths that turned around in
+  // opposite directions end a whole turn apart (+pi and -pi): averaged as
+  // numbers they would face the other way. Bring every end heading within pi
+  // of the first finished path's.
+  for (std::size_t j = 1; j < ends->finished.size(); ++j) {
+    const double ref = ends->finished[0].walker.q.theta_rad;
+    double& theta = ends->finished[j].walker.q.theta_rad;
+    theta = ref + std::remainder(theta - ref, 2.0 * kPi);
   }
   double finished = 0.0;
   for (const FinishedPath& p : ends->finished) {
