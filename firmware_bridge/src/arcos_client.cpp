@@ -301,6 +301,7 @@ Status ArcosClient::set_velocity(double trans_mps, double rot_radps) {
     return make_error(Error::Code::state, std::string("motion refused: link ") + hal::to_string(state_.link) +
                                               (estop_latched_ ? ", emergency stop latched" : ""));
   }
+  sips_at_motion_request_ = stats_.sips;
   const int vel = round_to_int(trans_mps * 1000.0);
   const int rvel = round_to_int(rot_radps * 180.0 / kPi);
   if (vel != vel_mm_s_ || !motion_active_) {
@@ -368,6 +369,16 @@ void ArcosClient::service_keepalive() {
   const bool time_due = clock_.now_us() - last_sent_us_ >= std::int64_t{config_.keepalive_ms} * 1000;
   const bool sips_due = stats_.sips - sips_at_last_send_ >= static_cast<std::uint64_t>(config_.keepalive_sips);
   if (!time_due && !sips_due) return;
+  if (motion_active_ && config_.motion_stale_sips > 0 &&
+      stats_.sips - sips_at_motion_request_ >= static_cast<std::uint64_t>(config_.motion_stale_sips)) {
+    // Nobody has asked for this motion for a while (the caller stalled, or is
+    // reading a backlog of SIPs): repeating it would drive on stale
+    // decisions. Stop instead; the caller's next set_velocity() resumes.
+    log::warn(config_.log_name, "event=stale-motion-stop sips_since_request=" +
+                                    std::to_string(stats_.sips - sips_at_motion_request_));
+    if (stop()) ++stats_.stale_motion_stops;
+    return;
+  }
   // Like ARIA: repeat a motion command in force, otherwise PULSE.
   const Status st = motion_active_ ? send_motion() : send(arcos::encode_command(arcos::Command::pulse));
   if (st) ++stats_.keepalives_sent;

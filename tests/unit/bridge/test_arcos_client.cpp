@@ -214,6 +214,29 @@ TEST_CASE("keep-alive repeats the velocity in force") {
   CHECK(vel_repeats >= 3);
 }
 
+TEST_CASE("motion_stale_sips: a velocity nobody asks for again is stopped once, not repeated; asking again resumes") {
+  bridge::ClientConfig config;
+  config.motion_stale_sips = 10;
+  Rig rig(config);
+  REQUIRE(rig.client->connect().ok());
+  REQUIRE(rig.client->set_velocity(0.2, 0.0).ok());
+  const std::size_t first = rig.robot.received.size();
+  rig.run_for(2.0);  // 2 s of SIPs, and no set_velocity(): a stalled caller
+  int vel_repeats = 0, stops = 0;
+  for (std::size_t i = first; i < rig.robot.received.size(); ++i) {
+    vel_repeats += rig.robot.received[i].number == num(Command::vel) && rig.robot.received[i].value == 200;
+    stops += rig.robot.received[i].number == num(Command::stop);
+  }
+  CHECK(vel_repeats <= 1);  // at most the keep-alive before the 10th SIP
+  CHECK(stops == 1);
+  CHECK(rig.client->stats().stale_motion_stops == 1);
+  // The caller is back: its request goes out at once.
+  const std::size_t before = rig.robot.received.size();
+  REQUIRE(rig.client->set_velocity(0.2, 0.0).ok());
+  REQUIRE(rig.robot.received.size() > before);
+  CHECK(rig.robot.received[before].number == num(Command::vel));
+}
+
 TEST_CASE("link loss: no SIP for 1 s refuses motion; SIPs returning restore it") {
   Rig rig;
   REQUIRE(rig.client->connect().ok());
