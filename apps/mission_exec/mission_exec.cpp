@@ -17,6 +17,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "p3at/common/cli_exit.hpp"
 #include "p3at/common/log.hpp"
 #include "p3at/launch_gate/exit_codes.hpp"
 #include "p3at/launch_gate/mission_run.hpp"
@@ -102,7 +103,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 3'600'000));
   app.add_flag("--resume-after-stall", opt.resume_after_stall,
                "After a stall longer than --stall-abort-ms, go on (saying so) instead of aborting");
-  CLI11_PARSE(app, argc, argv);
+  P3AT_CLI_PARSE(app, argc, argv);
   p3at::log::threshold() = parse_level(log_level);
   opt.team_key_env = std::getenv("P3AT_TEAM_KEY");
   return p3at::gate::run_mission(opt, g_stop, install_signal_handlers);

@@ -31,9 +31,11 @@ class Pacer {
     if (!waited.ok() && errors_++ % 50 == 0) {
       log::warn(kLog, "event=wait-error robot=" + executive_.robot().name + " error=\"" + waited.error().message + "\"");
     }
-    if (updated) {
-      // Updates that queued up while this process was not running: take them
-      // all now, so the cycle acts on the newest (bounded: a flood cannot hold us).
+    if (updated && last_wall_us_ && wall_us() - *last_wall_us_ > 2 * executive_.options().period_us) {
+      // This process did not run for a while (stopped, starved): updates
+      // queued up meanwhile. Take them all now (wait_for_update(0) returns
+      // only what has already arrived), so the cycle acts on the newest
+      // (bounded: a flood cannot hold us).
       for (int i = 0; i < 1000; ++i) {
         const Result<bool> more = drive_.wait_for_update(0);
         if (!more.ok() || !more.value()) break;

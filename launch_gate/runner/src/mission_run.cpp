@@ -146,6 +146,10 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
   p3at::hal::SteadyClock clock;
   auto team_link = open_team_link(mission, *robot_index, lcm_url, *key);
   if (!team_link) {
+    // A malformed URL is bad input (2); a well-formed one that cannot be opened is not.
+    if (team_link.error().code == p3at::Error::Code::invalid_argument) {
+      return bad_input("--lcm: " + team_link.error().message);
+    }
     std::fprintf(stderr, "mission_exec: cannot open the team link: %s\n", team_link.error().message.c_str());
     return kExitAborted;
   }
@@ -216,6 +220,7 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
     p3at::log::info(kLog, "event=connecting robot=" + spec.name + " hal=" + hal_url + " lcm=" + lcm_url +
                               " mission=" + mission.name + " seed=" + std::to_string(opt.seed));
     if (const auto st = robot.connect(); !st) {
+      if (st.error().code == p3at::Error::Code::invalid_argument) return bad_input("--hal: " + st.error().message);
       exec->abort("cannot connect to " + hal_url + ": " + st.error().message);
       print_summary(*exec, own.p_joint, monitor);
       return kExitAborted;

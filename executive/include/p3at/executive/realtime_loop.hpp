@@ -40,8 +40,9 @@ struct RealtimeOptions {
 /// robot is stopped (DriveBase::stop()). Returns the final outcome. `drive` must
 /// be the DriveBase the executive was built with.
 ///
-/// After a stall, the loop first takes every controller update already
-/// queued, so the next cycle runs on the newest one instead of replaying
+/// After a stall (more than two periods of wall time since the last cycle),
+/// the loop first takes every controller update already queued
+/// (DriveBase::wait_for_update(0)), so the next cycle runs on the newest one instead of replaying
 /// stale ones (each would send a motion command computed from the past); the
 /// stall is logged (`event=stall`) and counted (CycleStats::stalls,
 /// missed_cycles), and a long one aborts (see stall_abort_ms).
