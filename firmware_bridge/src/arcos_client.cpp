@@ -90,6 +90,10 @@ Status ArcosClient::handshake() {
     }
   }
 
+  // What came back during the handshake says why it failed: nothing, garbage
+  // (a wrong device or baud rate), or packets with bad checksums (noise).
+  const arcos::DecoderStats decoder_at_start = decoder_.stats();
+  handshake_bytes_ = 0;
   Status synced = make_error(Error::Code::timeout, stream_->describe() + ": no robot responding (SYNC0 unanswered)");
   while (clock_.now_us() < deadline) {
     synced = sync_once();
@@ -99,7 +103,8 @@ Status ArcosClient::handshake() {
   }
   if (!synced) {
     return make_error(Error::Code::timeout, stream_->describe() + ": could not connect, no robot responding (" +
-                                                synced.error().message + ")");
+                                                synced.error().message + "; " + handshake_diagnosis(decoder_at_start) +
+                                                ")");
   }
 
   info_.params = arcos::RobotParams::for_subclass(info_.identity.subclass);
@@ -205,9 +210,31 @@ Result<arcos::Packet> ArcosClient::wait_for_packet(std::optional<std::uint8_t> i
       decoder_.expire(clock_.now_us());
       continue;
     }
+    handshake_bytes_ += got.value();
     decoder_.feed(std::span<const std::uint8_t>(buffer.data(), got.value()), clock_.now_us(),
                   [this](const arcos::Packet& p) { inbox_.push_back(p); });
   }
+}
+
+std::string ArcosClient::handshake_diagnosis(const arcos::DecoderStats& before) const {
+  const arcos::DecoderStats& now = decoder_.stats();
+  if (handshake_bytes_ == 0) return "nothing came back";
+  const std::uint64_t packets = now.packets - before.packets;
+  const std::uint64_t bad_checksum = now.bad_checksum - before.bad_checksum;
+  const std::uint64_t garbage = now.discarded_bytes - before.discarded_bytes;
+  const std::uint64_t other_bad = (now.bad_header - before.bad_header) + (now.bad_count - before.bad_count) +
+                                  (now.timeouts - before.timeouts);
+  std::string out = std::to_string(handshake_bytes_) + " bytes came back: ";
+  if (bad_checksum > 0) {
+    out += std::to_string(bad_checksum) + " packets with bad checksums (a noisy line, or a wrong baud rate?)";
+  } else if (packets == 0) {
+    out += "garbage, no ARCOS packet (" + std::to_string(garbage) + " bytes skipped; not a Pioneer, or a wrong "
+           "baud rate?)";
+  } else {
+    out += std::to_string(packets) + " packets, none the SYNC echo expected";
+  }
+  if (other_bad > 0) out += ", " + std::to_string(other_bad) + " malformed frames";
+  return out;
 }
 
 Status ArcosClient::read_and_dispatch(int timeout_ms) {

@@ -117,11 +117,27 @@ TEST_CASE("no robot responding: a timeout error after the handshake limit, not a
   REQUIRE_FALSE(st.ok());
   CHECK(st.error().code == Error::Code::timeout);
   CHECK(st.error().message.find("no robot responding") != std::string::npos);
+  CHECK(st.error().message.find("nothing came back") != std::string::npos);
   const double waited_s = static_cast<double>(rig.clock.now_us() - start) / 1e6;
   CHECK(waited_s >= 5.9);
   CHECK(waited_s <= 7.5);
   CHECK(rig.client->state().link == hal::LinkState::disconnected);
   CHECK(rig.client->stats().handshake_failures == 1);
+}
+
+TEST_CASE("a failed handshake says what came back: garbage, or packets with bad checksums") {
+  Rig garbage;
+  garbage.robot.garbage_replies = true;
+  auto st = garbage.client->connect();
+  REQUIRE_FALSE(st.ok());
+  CHECK(st.error().message.find("garbage, no ARCOS packet") != std::string::npos);
+  CHECK(st.error().message.find("nothing came back") == std::string::npos);
+
+  Rig noisy;
+  noisy.robot.corrupt_replies = true;
+  st = noisy.client->connect();
+  REQUIRE_FALSE(st.ok());
+  CHECK(st.error().message.find("packets with bad checksums") != std::string::npos);
 }
 
 TEST_CASE("refused connection is an error value naming the robot") {

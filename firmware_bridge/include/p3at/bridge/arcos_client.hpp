@@ -118,6 +118,8 @@ class ArcosClient final : public hal::DriveBase {
   Status send(const arcos::Frame& frame);
   Status send_motion();
   void service_keepalive();
+  /// What came back since the handshake started (`before`: the decoder's counters then).
+  std::string handshake_diagnosis(const arcos::DecoderStats& before) const;
   void check_link();
   void lose_link(const std::string& why);
   bool motion_allowed(const char* what);
@@ -136,7 +138,8 @@ class ArcosClient final : public hal::DriveBase {
   std::int64_t last_sip_us_ = 0;
   std::int64_t last_sent_us_ = 0;
   std::uint64_t sips_at_last_send_ = 0;
-  std::uint64_t sips_at_motion_request_ = 0;  ///< stats_.sips at the latest set_velocity()
+  std::uint64_t sips_at_motion_request_ = 0;
+  std::uint64_t handshake_bytes_ = 0;  ///< bytes read during the current handshake  ///< stats_.sips at the latest set_velocity()
   std::int64_t last_reconnect_attempt_us_ = 0;
   bool estop_latched_ = false;
   bool ever_connected_ = false;
