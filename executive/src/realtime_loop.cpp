@@ -65,7 +65,8 @@ class Pacer {
         // Missed cycles: by the controller's updates (right under a fast
         // simulator too), or by wall time when the controller fell silent as well.
         const std::uint64_t by_updates = updates > 0 ? updates - 1 : 0;
-        const std::uint64_t by_wall = static_cast<std::uint64_t>(gap_us / period_us) - 1;
+        const std::int64_t periods = gap_us / period_us;
+        const std::uint64_t by_wall = periods > 1 ? static_cast<std::uint64_t>(periods - 1) : 0;
         const std::uint64_t missed = std::max(by_updates, by_wall);
         // Controller time the stall lasted (what the firmware's watchdog saw).
         const std::int64_t stall_ms =
