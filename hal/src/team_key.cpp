@@ -147,14 +147,25 @@ std::string team_key_fingerprint(const TeamKey& key) {
 }
 
 Status write_team_key_file(const std::string& path, const TeamKey& key, bool overwrite) {
-  const int flags = O_WRONLY | O_CREAT | O_CLOEXEC | (overwrite ? O_TRUNC : O_EXCL);
+  // O_NONBLOCK and O_NOFOLLOW: --force on a FIFO must not wait for a reader,
+  // and a key is never written through a symbolic link; anything but a
+  // regular file is refused below before a byte is written.
+  const int flags = O_WRONLY | O_CREAT | O_CLOEXEC | O_NONBLOCK | O_NOFOLLOW | (overwrite ? O_TRUNC : O_EXCL);
   const int fd = ::open(path.c_str(), flags, 0600);
+  if (fd < 0 && errno == ENXIO) {  // a FIFO with no reader
+    return make_error(Error::Code::invalid_argument, "team key file '" + path + "': is a FIFO, not a regular file");
+  }
   if (fd < 0) {
     if (errno == EEXIST) {
       return make_error(Error::Code::refused,
                         "team key file '" + path + "': already exists (refusing to replace a team key)");
     }
     return errno_error(path, "cannot create", errno);
+  }
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    return make_error(Error::Code::invalid_argument, "team key file '" + path + "': not a regular file");
   }
   // O_CREAT's mode does not apply to an existing file, and the umask may differ.
   if (::fchmod(fd, 0600) != 0) {

@@ -110,6 +110,12 @@ TEST_CASE("key files: only a regular file readable by its owner only, never all 
   auto from_fifo = hal::load_team_key(fifo);
   REQUIRE_FALSE(from_fifo.ok());
   CHECK(from_fifo.error().message.find("is a FIFO, not a regular file") != std::string::npos);
+  // Nor does writing a key over it (--force) wait for a reader.
+  auto fresh = hal::generate_team_key();
+  REQUIRE(fresh.ok());
+  auto over_fifo = hal::write_team_key_file(fifo, fresh.value(), true);
+  REQUIRE_FALSE(over_fifo.ok());
+  CHECK(over_fifo.error().message.find("FIFO") != std::string::npos);
   ::unlink(fifo.c_str());
   auto dir = hal::load_team_key("/tmp");
   REQUIRE_FALSE(dir.ok());
