@@ -9,7 +9,7 @@
 # 3. the same campaign with shard 2 killed by scancel: the merge job names
 #    the missing shard; rerunning only that shard completes the campaign
 #    with the same bytes.
-# About 60 s on the shared 2-core machine (most of it the runs and Slurm's
+# About 40 s on the shared 2-core machine (most of it the runs and Slurm's
 # scheduling passes); the last line says how long it took.
 set -euo pipefail
 cd "$(dirname "$0")/.."
