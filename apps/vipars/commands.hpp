@@ -16,5 +16,7 @@ void register_calibrate(CLI::App& app, int& exit_status);
 void register_validate(CLI::App& app, int& exit_status);
 void register_merge(CLI::App& app, int& exit_status);
 void register_report(CLI::App& app, int& exit_status);
+void register_generate(CLI::App& app, int& exit_status);
+void register_crosscheck(CLI::App& app, int& exit_status);
 
 }  // namespace p3at::vipars

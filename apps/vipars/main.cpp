@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
   p3at::vipars::register_validate(app, exit_status);
   p3at::vipars::register_merge(app, exit_status);
   p3at::vipars::register_report(app, exit_status);
+  p3at::vipars::register_generate(app, exit_status);
+  p3at::vipars::register_crosscheck(app, exit_status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
