@@ -30,7 +30,7 @@ mem="${P3AT_QEMU_MEM:-2G}"
 build_dir=""
 while [ $# -gt 0 ]; do
   case "$1" in
-    -h|--help) sed -n '2,24p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,23p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     --timeout) [ $# -ge 2 ] || die "--timeout needs a value"; timeout_s="$2"; shift 2 ;;
     --mem) [ $# -ge 2 ] || die "--mem needs a value"; mem="$2"; shift 2 ;;
     --) shift; break ;;
@@ -196,6 +196,7 @@ chmod +x "$share/stage2"
 mem_mb=${mem%[MG]}
 if [ "${mem: -1}" = G ]; then mem_mb=$(( mem_mb * 1024 )); fi
 say "booting $(basename "$vmlinuz") under QEMU (TCG) with $build_dir; ttyS0 <-> tcp 127.0.0.1:$host_port <-> guest :$guest_port; timeout ${timeout_s}s"
+say "(QEMU's 'Unable to connect character device robot' at start is expected: nothing listens in the guest yet; it retries every second)"
 t0=$(date +%s.%N)
 "$qemu" -accel tcg -cpu max -smp 2 -m "$mem_mb" -nodefaults -no-user-config -display none -no-reboot \
   -kernel "$vmlinuz" -initrd "$work/initramfs.cpio.gz" -append "console=ttyS1 panic=-1 quiet" \

@@ -25,7 +25,7 @@ namespace {
 
 constexpr int kExitAborted = 3;       // mission_exec: aborted during the mission
 constexpr int kLinkLossMs = 1000;     // ArcosClient's default link_loss_ms
-constexpr int kDetectSlackMs = 600;   // its loop period and emulation's scheduling on top
+constexpr int kDetectSlackMs = 800;   // its loop period and the emulated machine's stalls on top
 
 /// mission_exec for `robot` with the given drive URL (robot1: the serial line).
 std::vector<std::string> exec_for(const std::string& robot, const std::string& hal, const std::string& lcm,
@@ -126,6 +126,7 @@ TEST_CASE("relay: the serial cable pulled mid-mission is noticed within the link
   INFO("robot2 log:\n" << log2);
   MESSAGE("cable pulled at x=" << true_x(sim.truth_path) << " m after " << relayed.load()
                                << " relayed bytes; link loss noticed after <= " << noticed_ms << " ms");
+  INFO("noticed after " << noticed_ms << " ms");
   CHECK(noticed_ms <= kLinkLossMs + kDetectSlackMs);
   int silence_ms = -1;
   const std::size_t at = log1.find("why=\"no SIP for ");
