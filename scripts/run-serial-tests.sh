@@ -30,7 +30,7 @@ mem="${P3AT_QEMU_MEM:-2G}"
 build_dir=""
 while [ $# -gt 0 ]; do
   case "$1" in
-    -h|--help) sed -n '2,23p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     --timeout) [ $# -ge 2 ] || die "--timeout needs a value"; timeout_s="$2"; shift 2 ;;
     --mem) [ $# -ge 2 ] || die "--mem needs a value"; mem="$2"; shift 2 ;;
     --) shift; break ;;
@@ -61,7 +61,7 @@ for b in /bin/busybox /usr/bin/busybox; do
   if [ -x "$b" ] && ! ldd "$b" >/dev/null 2>&1; then busybox="$b"; break; fi
 done
 [ -n "$busybox" ] || die "no static busybox (Debian package busybox-static)"
-for tool in dpkg-deb gzip python3; do command -v "$tool" >/dev/null || die "$tool not found"; done
+for tool in dpkg-deb gzip python3 flock; do command -v "$tool" >/dev/null || die "$tool not found"; done
 
 # ---- the guest kernel: a Debian linux-image package, extracted (never installed) and cached
 # Modules the guest needs, by file name: virtio-pci, 9p over virtio, virtio-net.
@@ -77,6 +77,9 @@ if [ -z "$pkg" ]; then
 fi
 [ -n "$pkg" ] || die "cannot tell which Debian kernel to use (apt-cache depends linux-image-amd64 found none; run apt-get update)"
 kdir="$cache/$pkg"
+# One fetch at a time per cache (two runs may start together on a shared machine).
+exec 9>"$cache/.lock"
+flock 9
 if [ ! -f "$kdir/ready" ]; then
   say "fetching and extracting $pkg into $kdir (once per kernel version)"
   rm -rf "$kdir" "$kdir.part"
@@ -93,6 +96,8 @@ if [ ! -f "$kdir/ready" ]; then
   date -u +%FT%TZ >"$kdir.part/ready"
   mv "$kdir.part" "$kdir"
 fi
+flock -u 9
+exec 9>&-
 vmlinuz="$(ls "$kdir"/boot/vmlinuz-* 2>/dev/null | head -n 1)"
 [ -n "$vmlinuz" ] || die "no vmlinuz in $kdir (remove it to fetch again)"
 modroot="$(ls -d "$kdir"/lib/modules/*/kernel | head -n 1)"
