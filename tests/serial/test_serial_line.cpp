@@ -119,12 +119,12 @@ TEST_CASE("every supported baud rate opens the port at that rate and talks ARCOS
   SimOnPeerPort sim;
   REQUIRE_MESSAGE(sim.line_connected(1), sim.process.log());
   hal::SteadyClock clock;
-  int connections = 1;
   for (const int baud : kBauds) {
     CAPTURE(baud);
-    // Each session ends with CLOSE, after which p3at_sim drops the connection
-    // and QEMU reconnects: wait for the line before the next handshake.
-    REQUIRE_MESSAGE(sim.line_connected(connections), sim.process.log());
+    // No wait between sessions: after CLOSE p3at_sim drops the TCP connection
+    // and QEMU reconnects when the port is next opened and read (about 1 s);
+    // the client's SYNC retries ride over that, as over a robot that was
+    // still open from an earlier client.
     bridge::ClientConfig config;
     config.serial_preamble = true;
     config.auto_reconnect = false;
@@ -141,8 +141,8 @@ TEST_CASE("every supported baud rate opens the port at that rate and talks ARCOS
     CHECK(robot.stats().sips >= sips_before + 5);
     CHECK(robot.state().link == hal::LinkState::ok);
     CHECK(robot.decoder_stats().bad_checksum == 0);
+    MESSAGE("baud " << baud << ": handshake and 5 SIPs, decoder timeouts " << robot.decoder_stats().timeouts);
     CHECK(robot.disconnect().ok());
-    ++connections;
   }
 }
 

@@ -110,7 +110,10 @@ TEST_CASE("relay: the serial cable pulled mid-mission is noticed within the link
   while (!(true_x(sim.truth_path) > 1.5) && robot1.running() && steady_ms() < give_up) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  REQUIRE_MESSAGE(true_x(sim.truth_path) > 1.5, robot1.log());
+  INFO("robot1 log:\n" << robot1.log());
+  INFO("robot2 log:\n" << robot2.log());
+  INFO("p3at_sim log:\n" << sim.process.log());
+  REQUIRE(true_x(sim.truth_path) > 1.5);
   pulled = true;
   cable.stop();
   REQUIRE(pulled_at_ms > 0);
