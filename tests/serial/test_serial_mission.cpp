@@ -107,7 +107,7 @@ TEST_CASE("relay: the serial cable pulled mid-mission is noticed within the link
   ChildProcess robot1(exec_for("robot1", url(19200), lcm, key), scratch_path("robot1.log"));
   // Pull the cable once robot1 is well on its way (it starts at x = 1 m, goal 3 m).
   const std::int64_t give_up = steady_ms() + 120000;
-  while (!(true_x(sim.truth_path) > 1.5) && robot1.running() && steady_ms() < give_up) {
+  while (!(true_x(sim.truth_path) > 1.5) && robot1.running() && robot2.running() && steady_ms() < give_up) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   INFO("robot1 log:\n" << robot1.log());
