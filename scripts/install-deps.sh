@@ -15,6 +15,8 @@
 #   python3                           small test drivers (stdlib only)
 #   qemu-system-x86                   the serial rig: a real 8250 driver on an emulated 16550 UART
 #                                     (scripts/run-serial-tests.sh; libserialport refuses ptys)
+#   munge slurmctld slurmd slurm-client   a real single-node Slurm (cluster/slurm-local-up.sh) for the CI test of
+#                                     sharded validation: labs run big campaigns on Slurm (docs/cluster.md)
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
 SUDO=""
@@ -25,6 +27,7 @@ PACKAGES=(
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev gnuplot-nox
   can-utils busybox-static user-mode-linux python3 procps iproute2
   qemu-system-x86
+  munge slurmctld slurmd slurm-client
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
