@@ -8,6 +8,7 @@
 #   3. libFuzzer targets, each for a bounded time (P3AT_FUZZ_SECONDS, default 20;
 #      longer runs locally: P3AT_FUZZ_SECONDS=600 bash scripts/test.sh)
 #   4. SocketCAN tests inside a user-mode Linux kernel with vcan
+#   5. serial tests inside a QEMU guest whose /dev/ttyS0 is a real 8250 UART
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -39,5 +40,9 @@ ctest --test-dir build/fuzz -L fuzz --output-on-failure -j "$jobs"
 if [ -x scripts/run-socketcan-tests.sh ]; then
   step "SocketCAN tests inside user-mode Linux"
   bash scripts/run-socketcan-tests.sh build/release
+fi
+if [ -x scripts/run-serial-tests.sh ]; then
+  step "serial tests inside QEMU (8250 UART wired to p3at_sim)"
+  bash scripts/run-serial-tests.sh build/release
 fi
 step "all test stages passed"
