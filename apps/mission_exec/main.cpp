@@ -145,6 +145,7 @@ struct Options {
   std::vector<std::string> criteria_files;
   double gate_timeout_s = 30.0;
   bool override_gate = false;
+  bool accept_unvouched = false;
   std::uint64_t seed = 0;
   std::string log_level = "info";
   double linger_s = 5.0;
@@ -178,6 +179,10 @@ int main(int argc, char** argv) {
   app.add_flag("--override-gate", opt.override_gate,
                "Operator override: vote OVERRIDE (launch) whatever this robot's verifier says; logged and published "
                "as OVERRIDE. A teammate's NO-GO, a hash mismatch or a silent teammate still refuse");
+  app.add_flag("--accept-unvouched", opt.accept_unvouched,
+               "Operator's decision: launch a mission whose probabilities say GO although the model does not vouch "
+               "for one of its approximations (docs/verifier.md); without it such a mission is refused with exit 7. "
+               "Logged, and published as OVERRIDE");
   app.add_option("--hal", opt.hal_url, "Robot URL: tcp://127.0.0.1:8101 or serial:///dev/ttyS0?baud=9600");
   app.add_option("--lcm", opt.lcm_url, "Team link LCM URL, e.g. udpm://239.255.76.67:7667?ttl=1");
   app.add_option("--team-key", opt.team_key_file, "Team key file (else $P3AT_TEAM_KEY names it)");
@@ -206,6 +211,8 @@ int main(int argc, char** argv) {
   request.options.rmax_m = opt.rmax_m;
   request.options.threshold = opt.threshold;
   request.criteria_files = opt.criteria_files;
+  // --override-gate overrides every verifier decision, this one included.
+  request.accept_unvouched = opt.accept_unvouched || opt.override_gate;
   const gate::CheckReport report = gate::pre_launch_check(request, gate::verifier_source());
   p3at::log::info(kLog, "event=gate-check robot=" + opt.robot + " " + gate::check_fields(report));
   if (report.status == gate::CheckStatus::bad_input) return bad_input(report.error);
@@ -291,8 +298,14 @@ int main(int argc, char** argv) {
   install_signal_handlers();
   if (opt.override_gate) {
     p3at::log::warn(kLog, "event=gate-override robot=" + spec.name + " verifier_decision=" +
-                              (report.result.go ? "GO" : "NO-GO") + " p_joint=" + gate::fixed(own.p_joint, 4) +
-                              " threshold=" + gate::fixed(own.threshold, 4) + " operator=--override-gate");
+                              (report.result.go ? (report.result.evaluable ? "GO" : "CANNOT-EVALUATE") : "NO-GO") +
+                              " p_joint=" + gate::fixed(own.p_joint, 4) + " threshold=" + gate::fixed(own.threshold, 4) +
+                              " operator=--override-gate");
+  } else if (report.accepted_unvouched) {
+    p3at::log::warn(kLog, "event=gate-accept-unvouched robot=" + spec.name + " unvouched=" +
+                              p3at::verifier::unvouched_kinds(report.result.approximations) +
+                              " p_joint=" + gate::fixed(own.p_joint, 4) + " threshold=" + gate::fixed(own.threshold, 4) +
+                              " operator=--accept-unvouched");
   }
 
   // A robot whose own verdict is NO-GO never even connects: it only tells the team.

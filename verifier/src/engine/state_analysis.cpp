@@ -263,6 +263,8 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
     a.cycles_simulated += p.cycles;
     if (!p.exit) {
       a.blocked += w;
+      a.blocked_x_m += w * p.end.x_m;  // divided by `blocked` below (where it is reported)
+      a.blocked_y_m += w * p.end.y_m;
       continue;
     }
     finished += w;
@@ -274,6 +276,10 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
     a.end.theta_rad += w * p.end.theta_rad;
     a.end.trans_mps += w * p.end.trans_mps;
     a.end.rot_radps += w * p.end.rot_radps;
+  }
+  if (a.blocked > 0.0) {
+    a.blocked_x_m /= a.blocked;
+    a.blocked_y_m /= a.blocked;
   }
   if (finished <= 0.0) {
     a.end = start;
@@ -416,7 +422,11 @@ StateAnalysis analyze_still(const StateContext& ctx, std::size_t state, const Ba
     }
   }
   const bool waits = has_trigger_kind(robot, state, mission::TriggerKind::notified);
-  if (a.exits.empty() && !waits && !robot.is_final(state)) a.blocked = 1.0;
+  if (a.exits.empty() && !waits && !robot.is_final(state)) {
+    a.blocked = 1.0;
+    a.blocked_x_m = start.x_m;
+    a.blocked_y_m = start.y_m;
+  }
   return a;
 }
 

@@ -132,6 +132,21 @@ std::string fixed(double v, int decimals) {
 
 }  // namespace
 
+const char* to_string(Decision d) {
+  switch (d) {
+    case Decision::go: return "go";
+    case Decision::no_go: return "no-go";
+    case Decision::cannot_evaluate: return "cannot-evaluate";
+  }
+  return "?";
+}
+
+void locate_in_mission_file(VerifyResult& result, std::string_view mission_yaml, const std::string& mission_file) {
+  const MissionLocator locator(mission_yaml, mission_file);
+  locate_approximations(result.approximations, locator);
+  for (BlockedRobot& b : result.blocked) b.where = locator.where(b.robot, MissionElement::state, b.state);
+}
+
 Result<SystemOutcome> evaluate_system(const mission::Mission& mission, const Models& models, const TeamSnapshot* from) {
   if (const Status st = check_models(mission, models); !st) return st.error();
   if (from != nullptr && from->robots.size() != mission.robots.size()) {
@@ -175,6 +190,22 @@ Result<VerifyResult> verify(const mission::Mission& mission, const Models& model
   r.branches = o.branches.size();
   r.subsystems = o.subsystems;
 
+  for (const BlockedRecord& b : o.blocked) {
+    if (b.mass < 1e-9) continue;
+    BlockedRobot br;
+    br.robot = b.robot;
+    br.name = mission.robots[b.robot].name;
+    br.state = b.state;
+    br.state_name = mission.robots[b.robot].states[b.state].name;
+    br.x_m = b.x_m;
+    br.y_m = b.y_m;
+    br.why = b.why;
+    br.probability = std::min(1.0, b.mass);
+    r.blocked.push_back(std::move(br));
+  }
+  r.approximations = detect_approximations(mission, models, o);
+  r.evaluable = all_vouched(r.approximations);
+
   std::vector<std::pair<double, const Mixture1*>> completion;
   for (const Branch& b : o.branches) completion.emplace_back(b.weight, &b.completion_time_s);
   moments(completion, r.completion_mean_s, r.completion_sd_s);
@@ -204,6 +235,11 @@ Result<VerifyResult> verify(const mission::Mission& mission, const Models& model
     rp.final_y_m = mean.y();
     rp.final_sd_m = std::sqrt(std::max(0.0, cov.trace() / 2.0));
     rp.dist_mean_m = expected_distance(o, i, goal);
+    rp.finishes = w > 0.0;
+    for (const BlockedRobot& b : r.blocked) {
+      if (b.robot == i) rp.p_blocked += b.probability;
+    }
+    rp.p_blocked = std::min(1.0, rp.p_blocked);
     r.robots.push_back(rp);
   }
 

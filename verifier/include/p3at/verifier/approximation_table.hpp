@@ -1,0 +1,99 @@
+#pragma once
+/// The one table of the verifier's known approximations: for each kind, the
+/// largest |verify - validate| measured on missions that have it (over the
+/// P(t <= Tmax) curve, the P(every r <= Rmax) curve and the joint surface),
+/// and the command that measured it. A kind is vouched for when its measured
+/// error is within the bounds below (or when it only ever warns); otherwise a
+/// mission that has it cannot be evaluated: the gate refuses it unless the
+/// operator accepts it (docs/verifier.md, "Approximations").
+///
+/// To vouch for a kind once the model handles it: re-measure (the cross-check
+/// campaign, or `vipars report` on missions of that kind) and change its one
+/// row: the three numbers and the command. Nothing else changes.
+
+#include <array>
+#include <optional>
+
+namespace p3at::verifier {
+
+enum class ApproximationKind {
+  noise_redrawn_in_leg,        ///< NOISE redrawn within a leg, dropoff < 1 m and gain <= 0.15
+  noise_redrawn_strong,        ///< NOISE redrawn within a leg with dropoff >= 1 m or gain > 0.15
+  message_interrupts_motion,   ///< a Notified transition leaves a GoToGuarded or Spin state
+  fsa_loop,                    ///< a back-edge in a robot's FSA (a patrol)
+  robots_racing,               ///< three or more robots whose next events race (pairwise products)
+  time_position_coupled,       ///< a criterion couples time and position the model treats as independent
+  teammates_moving_near_path,  ///< two legs driven at once come within avoidance reach (or cross)
+  may_get_trapped,             ///< a concave corner, a narrow gap or a wall across a leg
+  speed_above_calibration,     ///< max_speed_mps above the speed the robot's model was calibrated at
+  speed_above_top,             ///< max_speed_mps above the robot's physical top speed
+  speed_calibration_unknown,   ///< the models file does not say the speed it was calibrated at (warning)
+};
+inline constexpr std::size_t kApproximationKinds = 11;
+
+/// The bounds a kind's measured error must be within to be vouched for (the
+/// cross-check issue's: time curve, radius curve, joint surface).
+inline constexpr double kBoundTime = 0.05;
+inline constexpr double kBoundRadius = 0.05;
+inline constexpr double kBoundJoint = 0.08;
+
+struct MeasuredError {
+  double time = 0.0, radius = 0.0, joint = 0.0;
+  bool within_bounds() const { return time <= kBoundTime && radius <= kBoundRadius && joint <= kBoundJoint; }
+};
+
+/// What a kind does to the gate when it is not vouched for.
+enum class Treatment {
+  refuse,     ///< cannot evaluate: the gate refuses unless the operator accepts
+  warn_only,  ///< listed and printed, never refuses (no effect on the answer's soundness)
+};
+
+struct ApproximationRow {
+  ApproximationKind kind;
+  const char* name;        ///< JSON "kind"
+  Treatment treatment;
+  std::optional<MeasuredError> measured;  ///< worst over the missions measured; nullopt: never measured
+  const char* measured_by; ///< the command(s) behind `measured`
+};
+
+// One row per kind, in enum order. The measurements are the worst over the
+// missions that have the kind (a mission's errors count for every kind it
+// has, so a row is pessimistic when a mission has several); the missions are
+// in tests/data/honest/ and examples/. docs/verifier.md has the table too.
+inline constexpr std::array<ApproximationRow, kApproximationKinds> kApproximationTable{{
+    {ApproximationKind::noise_redrawn_in_leg, "noise-redrawn-in-leg", Treatment::refuse,
+     MeasuredError{0.0316, 0.0312, 0.0425},
+     "examples/concurrent_moves (NOISE held 30 s on 40 s legs, dropoff 0.5, gain 0.135): docs/results/README.md, "
+     "vipars report on 10,000 runs"},
+    {ApproximationKind::noise_redrawn_strong, "noise-redrawn-strong", Treatment::refuse,
+std::nullopt,
+     "tests/data/honest/five_legs"},
+    {ApproximationKind::message_interrupts_motion, "message-interrupts-motion", Treatment::refuse, std::nullopt,
+     "tests/data/honest/patrol_recall (see fsa-loop)"},
+    {ApproximationKind::fsa_loop, "fsa-loop", Treatment::refuse, std::nullopt, "tests/data/honest/patrol_recall"},
+    {ApproximationKind::robots_racing, "robots-racing", Treatment::refuse, std::nullopt, "tests/data/honest/chain_of_four"},
+    {ApproximationKind::time_position_coupled, "time-position-coupled", Treatment::refuse, std::nullopt,
+     "tests/data/honest/patrol_recall"},
+    {ApproximationKind::teammates_moving_near_path, "teammates-moving-near-path", Treatment::refuse, std::nullopt,
+     "tests/data/honest/meeting"},
+    {ApproximationKind::may_get_trapped, "may-get-trapped", Treatment::refuse, std::nullopt,
+     "tests/data/honest/z_overwatch"},
+    {ApproximationKind::speed_above_calibration, "speed-above-calibration", Treatment::refuse, std::nullopt,
+     "never measured"},
+    {ApproximationKind::speed_above_top, "speed-above-top", Treatment::refuse, std::nullopt,
+     "never measured: the robot cannot drive that fast, so the prediction is optimistic"},
+    {ApproximationKind::speed_calibration_unknown, "speed-calibration-unknown", Treatment::warn_only, std::nullopt,
+     "a models file from before calibration recorded its speed"},
+}};
+
+inline const ApproximationRow& approximation_row(ApproximationKind kind) {
+  return kApproximationTable[static_cast<std::size_t>(kind)];
+}
+
+/// Vouched: the answer on a mission with this kind is within the bounds (measured), or the kind only warns.
+inline bool vouched(ApproximationKind kind) {
+  const ApproximationRow& row = approximation_row(kind);
+  return row.treatment == Treatment::warn_only || (row.measured && row.measured->within_bounds());
+}
+
+}  // namespace p3at::verifier
