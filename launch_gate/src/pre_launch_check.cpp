@@ -139,7 +139,9 @@ hal::GateVerdict make_verdict(const CheckReport& report, bool override_gate) {
   v.rmax_m = r.rmax_m;
   if (override_gate) {
     v.decision = hal::GateDecision::override_go;
-    v.detail = std::string("operator override; the verifier said ") + verifier::to_string(verifier::decision(r));
+    const verifier::Decision said = verifier::decision(r);
+    v.detail = std::string("operator override; the verifier said ") +
+               (said == verifier::Decision::go ? "GO" : said == verifier::Decision::no_go ? "NO-GO" : "CANNOT-EVALUATE");
     if (!r.failed.empty()) v.detail += ": " + join(r.failed, "; ");
   } else if (report.accepted_unvouched) {
     v.decision = hal::GateDecision::override_go;

@@ -306,21 +306,27 @@ class Detector {
           if (segments_cross(a, b, c, d)) found.push_back("a wall " + pt(c) + "-" + pt(d) + " lies across the leg");
           for (std::size_t v = w + 1; v < walls.size(); ++v) {
             const P e{walls[v].x0_m, walls[v].y0_m}, f{walls[v].x1_m, walls[v].y1_m};
-            // A concave corner: two walls meeting at a point near the leg,
-            // the leg inside the angle they make (where AVOID's pushes cancel).
+            // A concave corner: two walls meeting at a point, the leg passing
+            // inside the angle they make within AVOID's reach of both (where
+            // their pushes and the goal's pull can cancel: a robot pinned).
             for (const auto& [corner, u_end] : {std::pair{c, d}, std::pair{d, c}}) {
               for (const auto& [other_corner, other_end] : {std::pair{e, f}, std::pair{f, e}}) {
                 if (norm(corner - other_corner) > 1e-3) continue;
                 const P u = u_end - corner, vv = other_end - corner;
                 const double det = cross(u, vv);
                 if (std::abs(det) < 1e-6 * norm(u) * norm(vv)) continue;  // collinear: one straight wall
-                const P q = closest_on(a, b, corner);
-                if (norm(q - corner) > reach) continue;
-                const P rel = q - corner;
-                const double alpha = cross(rel, vv) / det, beta = cross(u, rel) / det;
-                if (alpha > 0.0 && beta > 0.0) {
-                  found.push_back("a concave corner at " + pt(corner) + " within " + num(norm(q - corner), 2) +
-                                  " m of the leg");
+                const double length = norm(b - a);
+                const int steps = std::max(1, static_cast<int>(length / 0.1));
+                for (int k = 0; k <= steps; ++k) {
+                  const P q = a + (static_cast<double>(k) / steps) * (b - a);
+                  const P rel = q - corner;
+                  const double alpha = cross(rel, vv) / det, beta = cross(u, rel) / det;
+                  if (!(alpha > 0.0 && beta > 0.0)) continue;
+                  if (norm(closest_on(c, d, q) - q) < reach && norm(closest_on(e, f, q) - q) < reach) {
+                    found.push_back("a concave corner at " + pt(corner) + ": the leg passes within " + num(reach, 2) +
+                                    " m (avoidance reach) of both its walls");
+                    break;
+                  }
                 }
               }
             }
