@@ -207,3 +207,19 @@ TEST_CASE("a blocked robot is said to be blocked, where, never 'done at 0.0 ± 0
   CHECK(r3);
   for (const auto& robot : j["robots"]) CHECK(robot["finishes"] == false);
 }
+
+TEST_CASE("vipars simulate says why a run timed out, without --verbose: who, in which state, where, why") {
+  const std::string args = "simulate " + honest("alcove_pinned", "mission.yaml") + " --world " +
+                           honest("alcove_pinned", "world.yaml") + " --runs 1 --timeout 150";
+  const nlohmann::json j = nlohmann::json::parse(run(args + " --json").out);
+  const std::string outcome = j["runs"][0]["outcome"];
+  CHECK(outcome.find("timeout (") == 0);
+  CHECK(outcome.find("r3 in 'into_alcove'") != std::string::npos);
+  CHECK(outcome.find("r4 in 'wait' waiting for 'r3_in' from r3") != std::string::npos);
+  for (const auto& robot : j["runs"][0]["robots"]) {
+    if (robot["name"] == "r3") CHECK(robot["reason"].get<std::string>().find("in state 'into_alcove' at (") == 0);
+    if (robot["name"] == "r1") CHECK(robot["reason"] == "");  // finished: nothing to explain
+  }
+  const Run text = run(args);
+  CHECK(text.out.find("1 run(s): timeout (r3 in 'into_alcove'") != std::string::npos);
+}
