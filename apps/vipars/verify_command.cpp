@@ -4,8 +4,6 @@
 // mission meets its criteria, from the mission and the robot models alone.
 
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -34,11 +32,7 @@ struct VerifyFlags {
 int run_verify(const VerifyFlags& f) {
   std::optional<mission::Mission> mission;
   std::optional<verifier::Models> models;
-  std::string mission_text;
   try {
-    // The text is kept to locate the approximations in it (file:line:column).
-    std::ifstream in(f.mission_file, std::ios::binary);
-    mission_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
     mission = mission::load_mission_file(f.mission_file);
     models = verifier::load_models_file(f.models_file);
   } catch (const std::exception& e) {
@@ -66,7 +60,7 @@ int run_verify(const VerifyFlags& f) {
     std::fprintf(stderr, "vipars verify: %s\n", result.error().message.c_str());
     return kExitBadInput;
   }
-  verifier::locate_in_mission_file(*result, mission_text, f.mission_file);
+  locate_from_file(*result, f.mission_file);
   if (f.json) {
     std::cout << verify_json(*mission, *result).dump(2) << "\n";
   } else {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 
 namespace p3at::vipars {
 namespace {
@@ -40,6 +42,12 @@ std::string why_blocked(const std::string& why) {
 }
 
 }  // namespace
+
+void locate_from_file(verifier::VerifyResult& result, const std::string& mission_file) {
+  std::ifstream in(mission_file, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  verifier::locate_in_mission_file(result, text, mission_file);
+}
 
 nlohmann::json approximations_json(const std::vector<verifier::Approximation>& approximations) {
   nlohmann::json out = nlohmann::json::array();
