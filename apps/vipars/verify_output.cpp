@@ -86,6 +86,7 @@ nlohmann::json verify_json(const mission::Mission& mission, const verifier::Veri
   j["mission"] = mission.name;
   j["decision"] = verifier::to_string(verifier::decision(r));
   j["evaluable"] = r.evaluable;
+  j["p_joint_widened"] = r.p_joint_widened ? nlohmann::json(*r.p_joint_widened) : nlohmann::json(nullptr);
   j["tmax_s"] = r.tmax_s;
   j["rmax_m"] = r.rmax_m;
   j["threshold"] = r.threshold;
@@ -149,6 +150,10 @@ std::string verify_text(const mission::Mission& mission, const verifier::VerifyR
        "\n";
   s += "  P(every r_i <= Rmax)         " + fixed(r.p_radius, 4) + "\n";
   s += "  P(t <= Tmax and r_i <= Rmax) " + fixed(r.p_joint, 4) + "\n";
+  if (r.p_joint_widened) {
+    s += "  decided at Tmax - " + fixed(verifier::kWidenTime_s, 1) + " s, Rmax - " + fixed(verifier::kWidenRadius_m, 2) +
+         " m (an approximation that shifts the curves): P " + fixed(*r.p_joint_widened, 4) + "\n";
+  }
   for (std::size_t i = 0; i < r.robots.size(); ++i) {
     const verifier::RobotPrediction& p = r.robots[i];
     if (!p.finishes) {

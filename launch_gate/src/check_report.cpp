@@ -43,6 +43,10 @@ std::string format_check(const CheckReport& report) {
   out += line("P(every robot within Rmax = " + fixed(r.rmax_m, 2) + " m)", fixed(r.p_radius, 4));
   out += line("P(success) = P(both)", fixed(r.p_joint, 4) + (r.p_joint >= r.threshold ? "  >= " : "  < ") +
                                           "threshold " + fixed(r.threshold, 4));
+  if (r.p_joint_widened) {
+    out += line("P(success) widened", fixed(*r.p_joint_widened, 4) + " at Tmax - " + fixed(verifier::kWidenTime_s, 1) +
+                                          " s, Rmax - " + fixed(verifier::kWidenRadius_m, 2) + " m (decided on this)");
+  }
   for (const verifier::CriterionVerdict& c : r.criteria) {
     out += line("criterion " + c.name, fixed(c.probability, 4) + (c.holds ? "  holds" : "  FAILS") + " (needs " +
                                            fixed(c.required, 4) + ")");

@@ -210,11 +210,12 @@ class Detector {
     const double speed = std::max(1e-3, r.max_speed_mps);
     for (std::size_t s = 0; s < r.states.size(); ++s) {
       const auto* go = std::get_if<mission::GoToGuardedParams>(&r.states[s].behavior);
-      if (go == nullptr || go->noise_gain == 0.0) continue;
+      if (go == nullptr) continue;
       double longest = 0.0;
       for (const auto& [from, to] : legs_of(r, s, entries)) longest = std::max(longest, norm(to - from));
       // Cycles to drive the leg at full speed: a lower bound of the leg's real duration.
       const double cycles = longest / speed / model.kinematics.cycle_s;
+      if (go->noise_gain == 0.0) continue;
       if (static_cast<double>(go->noise_persistence_cycles) >= cycles) continue;
       const bool strong = go->dropoff_m >= 1.0 || std::abs(go->noise_gain) > 0.15;
       add(strong ? ApproximationKind::noise_redrawn_strong : ApproximationKind::noise_redrawn_in_leg, i,
@@ -236,6 +237,13 @@ class Detector {
     const RobotSpec& r = m_.robots[i];
     for (std::size_t t = 0; t < r.transitions.size(); ++t) {
       const mission::Transition& tr = r.transitions[t];
+      if (tr.kind() == mission::TriggerKind::notified && r.states[tr.to].kind() == BehaviorKind::go_to_guarded) {
+        add(ApproximationKind::leg_entered_on_message, i, MissionElement::state, tr.to,
+            "entered on '" + std::get<mission::NotifiedParams>(tr.trigger).message +
+                "': where within a cycle the leg starts is not modelled, which shifts its end by millimetres and "
+                "its duration by a cycle; the decision is taken at Tmax - " + num(kWidenTime_s, 1) + " s, Rmax - " +
+                num(kWidenRadius_m, 2) + " m");
+      }
       if (tr.kind() != mission::TriggerKind::notified || !moving(r, tr.from)) continue;
       const auto& msg = std::get<mission::NotifiedParams>(tr.trigger).message;
       add(ApproximationKind::message_interrupts_motion, i, MissionElement::transition, t,
@@ -301,10 +309,20 @@ class Detector {
       const double narrow = 2.0 * body + 0.2;    // a gap the robot cannot pass with margin
       std::vector<std::string> found;
       for (const auto& [a, b] : legs_of(r, s, entries)) {
+        // Only walls within reach of the leg can pin the robot on it: every
+        // test below needs both of its walls that close (this keeps the cost
+        // linear in the walls for a large map).
+        std::vector<std::size_t> near;
         for (std::size_t w = 0; w < walls.size(); ++w) {
           const P c{walls[w].x0_m, walls[w].y0_m}, d{walls[w].x1_m, walls[w].y1_m};
+          if (segment_distance(a, b, c, d) < std::max(reach, narrow)) near.push_back(w);
+        }
+        for (std::size_t ni = 0; ni < near.size(); ++ni) {
+          const std::size_t w = near[ni];
+          const P c{walls[w].x0_m, walls[w].y0_m}, d{walls[w].x1_m, walls[w].y1_m};
           if (segments_cross(a, b, c, d)) found.push_back("a wall " + pt(c) + "-" + pt(d) + " lies across the leg");
-          for (std::size_t v = w + 1; v < walls.size(); ++v) {
+          for (std::size_t nj = ni + 1; nj < near.size(); ++nj) {
+            const std::size_t v = near[nj];
             const P e{walls[v].x0_m, walls[v].y0_m}, f{walls[v].x1_m, walls[v].y1_m};
             // A concave corner: two walls meeting at a point, the leg passing
             // inside the angle they make within AVOID's reach of both (where

@@ -5,6 +5,8 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
+#include <tuple>
 #include <string>
 #include <utility>
 #include <variant>
@@ -168,6 +170,7 @@ class Sequencer {
     evaluate(start());
     record_entries_ = false;
     outcome_ = SystemOutcome{};
+    legs_seen_.clear();
 
     BranchState b;
     b.clock = Mixture1::point(snap.elapsed_s);
@@ -607,11 +610,7 @@ class Sequencer {
       const std::size_t js = b.robots[j].state;
       const auto* theirs = std::get_if<mission::GoToGuardedParams>(&mission_.robots[j].states[js].behavior);
       if (theirs == nullptr) continue;
-      const bool seen = std::any_of(outcome_.concurrent_legs.begin(), outcome_.concurrent_legs.end(),
-                                    [&](const ConcurrentLegs& c) {
-                                      return c.robot == i && c.state == state && c.teammate == j && c.teammate_state == js;
-                                    });
-      if (seen) continue;
+      if (!legs_seen_.insert({i, state, j, js}).second) continue;
       const Eigen::Vector2d at = b.robots[j].true_mean();
       outcome_.concurrent_legs.push_back({i, state, j, js, from.x(), from.y(), mine->goal.x_m, mine->goal.y_m, at.x(),
                                           at.y(), theirs->goal.x_m, theirs->goal.y_m});
@@ -625,7 +624,8 @@ class Sequencer {
   SystemOutcome outcome_;
   bool record_entries_ = false;
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
-  std::size_t entering_ = kNone;  ///< while the initial states are entered: the robot entering
+  std::size_t entering_ = kNone;
+  std::set<std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>> legs_seen_;  ///< concurrent_legs' keys  ///< while the initial states are entered: the robot entering
   std::map<std::pair<std::size_t, std::size_t>, ErrorState> entry_errors_;
 };
 

@@ -94,6 +94,10 @@ struct VerifyResult {
   /// "cannot evaluate", never GO.
   std::vector<Approximation> approximations;
   bool evaluable = true;
+  /// When an approximation is answered by widening (Treatment::widen): the
+  /// joint probability at Tmax - kWidenTime_s, Rmax - kWidenRadius_m, which
+  /// `go` is decided on instead of p_joint.
+  std::optional<double> p_joint_widened;
 };
 
 enum class Decision { go, no_go, cannot_evaluate };
