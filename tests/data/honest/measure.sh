@@ -20,3 +20,18 @@ z_overwatch 141.6:176.2:0.6 0.02:1.17:0.02
 meeting 35.6:42.0:0.5 0.02:0.90:0.02
 patrol_recall 37.9:44.7:0.5 0.02:11.37:0.23
 MISSIONS
+# The relay (leg-entered-on-message), 2,000 runs, and the same with NOISE held
+# for the whole leg and with 3.5 m legs; then each one's over-confidence when
+# decided at Tmax - 0.5 s, Rmax - 0.02 m (the widening, docs/verifier.md).
+tmp="$out/missions"
+mkdir -p "$tmp"
+sed 's/dropoff_m: 0.5}}/dropoff_m: 0.5, noise_persistence_cycles: 1000}}/' examples/relay/mission.yaml > "$tmp/relay_held.yaml"
+sed -e 's/goal: \[3.0, 1.0\]/goal: [4.5, 1.0]/' -e 's/goal: \[3.0, 3.0\]/goal: [4.5, 3.0]/' examples/relay/mission.yaml > "$tmp/relay_long.yaml"
+for m in examples/relay/mission.yaml:relay:13.5:16.5:0.1 "$tmp/relay_held.yaml:relay_held:13.5:16.5:0.1" \
+         "$tmp/relay_long.yaml:relay_long:22:27:0.1"; do
+  IFS=: read -r file name t0 t1 dt <<<"$m"
+  echo "== $name"
+  vipars report "$file" --models tests/sitl/data/relay_models.yaml --world examples/relay/world.yaml --trials 2000 \
+    --jobs 1 --seed 1 --tmax-range "$t0:$t1:$dt" --rmax-range 0.1:0.3:0.005 --no-plots --out "$out/$name" || true
+  python3 tests/data/honest/shifted_overconfidence.py "$out/$name" 0.5 0.02
+done
