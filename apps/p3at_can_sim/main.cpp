@@ -17,7 +17,7 @@
 #include <cstdio>
 #include <string>
 
-#include "node_commands.hpp"
+#include "p3at/sim/can/node_commands.hpp"
 #include "p3at/hal/can_bus.hpp"
 #include "p3at/hal/clock.hpp"
 #include "p3at/sim/can/sim_accessories.hpp"

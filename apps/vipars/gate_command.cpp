@@ -7,9 +7,6 @@
 
 #include <cstdio>
 #include <memory>
-#include <optional>
-#include <string>
-#include <vector>
 
 #include "commands.hpp"
 #include "p3at/launch_gate/check_report.hpp"
@@ -18,23 +15,8 @@
 namespace p3at::vipars {
 namespace {
 
-struct GateFlags {
-  std::string mission_file;
-  std::optional<std::string> models_file;
-  std::optional<double> tmax_s, rmax_m, threshold;
-  std::vector<std::string> criteria;
-  bool accept_unvouched = false;
-};
-
-int run_gate(const GateFlags& f) {
-  gate::CheckRequest request;
-  request.mission_path = f.mission_file;
-  request.models_path = f.models_file;
-  request.options.tmax_s = f.tmax_s;
-  request.options.rmax_m = f.rmax_m;
-  request.options.threshold = f.threshold;
-  request.criteria_files = f.criteria;
-  request.accept_unvouched = f.accept_unvouched;
+// The flags fill the pre-launch check's request directly, as mission_exec's do.
+int run_gate(const gate::CheckRequest& request) {
   const gate::CheckReport report = gate::pre_launch_check(request, gate::verifier_source());
   if (report.accepted_unvouched) {
     // Logged where the operator sees it, as mission_exec logs it on every robot.
@@ -63,7 +45,7 @@ int run_gate(const GateFlags& f) {
 }  // namespace
 
 void register_gate(CLI::App& app, int& exit_status) {
-  auto flags = std::make_shared<GateFlags>();
+  auto flags = std::make_shared<gate::CheckRequest>();
   CLI::App* sub = app.add_subcommand(
       "gate",
       "The launch gate's check, before anything is deployed: the same verification every robot makes before it "
@@ -71,15 +53,15 @@ void register_gate(CLI::App& app, int& exit_status) {
       "Exit 0 = GO, 1 = NO-GO, 2 = bad input (unreadable mission, models or flags; no models file), "
       "3 = the verifier cannot evaluate the mission with these models (it cannot run, or the mission has an "
       "approximation the model does not vouch for: docs/verifier.md; --accept-unvouched to launch anyway).");
-  sub->add_option("mission", flags->mission_file, "mission file (YAML, docs/mission-format.md)")->required();
-  sub->add_option("--models", flags->models_file,
+  sub->add_option("mission", flags->mission_path, "mission file (YAML, docs/mission-format.md)")->required();
+  sub->add_option("--models", flags->models_path,
                   "robot models file (docs/verifier.md); default: models.yaml beside the mission file, as on the "
                   "robots");
-  sub->add_option("--tmax", flags->tmax_s, "override the mission's Tmax (seconds)")->check(CLI::PositiveNumber);
-  sub->add_option("--rmax", flags->rmax_m, "override the mission's Rmax (metres)")->check(CLI::PositiveNumber);
-  sub->add_option("--threshold", flags->threshold, "override the mission's launch threshold P")
+  sub->add_option("--tmax", flags->options.tmax_s, "override the mission's Tmax (seconds)")->check(CLI::PositiveNumber);
+  sub->add_option("--rmax", flags->options.rmax_m, "override the mission's Rmax (metres)")->check(CLI::PositiveNumber);
+  sub->add_option("--threshold", flags->options.threshold, "override the mission's launch threshold P")
       ->check(CLI::Range(0.0, 1.0));
-  sub->add_option("--criterion", flags->criteria, "extra criterion file (PARS, docs/verifier.md); repeatable");
+  sub->add_option("--criterion", flags->criteria_files, "extra criterion file (PARS, docs/verifier.md); repeatable");
   sub->add_flag("--accept-unvouched", flags->accept_unvouched,
                 "Operator's decision: a mission whose probabilities say GO but whose approximations the model does not "
                 "vouch for is GO (logged; the robots publish it as OVERRIDE) instead of cannot-evaluate (exit 3)");

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "range_arg.hpp"
-#include "verify_output.hpp"
+#include "p3at/validation/range_arg.hpp"
+#include "p3at/validation/verify_output.hpp"
 #include "p3at/protocols/mission/loader.hpp"
 #include "p3at/verifier/models.hpp"
 #include "p3at/verifier/verify.hpp"

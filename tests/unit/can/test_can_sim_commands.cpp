@@ -2,7 +2,7 @@
 
 #include <memory>
 
-#include "node_commands.hpp"
+#include "p3at/sim/can/node_commands.hpp"
 #include "p3at/sim/can/sim_can_network.hpp"
 #include "p3at/sim/sim_clock.hpp"
 

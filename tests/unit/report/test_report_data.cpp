@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "report_dat.hpp"
-#include "report_data.hpp"
-#include "report_errors.hpp"
+#include "p3at/report/report_dat.hpp"
+#include "p3at/report/report_data.hpp"
+#include "p3at/report/report_errors.hpp"
 #include "report_test_docs.hpp"
 
 namespace {

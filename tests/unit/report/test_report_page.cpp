@@ -11,10 +11,10 @@
 #include <sstream>
 #include <string>
 
-#include "report_build.hpp"
-#include "report_commands.hpp"
-#include "report_html.hpp"
-#include "report_plots.hpp"
+#include "p3at/report/report_build.hpp"
+#include "p3at/report/command_lines.hpp"
+#include "p3at/report/report_html.hpp"
+#include "p3at/report/report_plots.hpp"
 #include "report_test_docs.hpp"
 
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "range_arg.hpp"
+#include "p3at/validation/range_arg.hpp"
 
 using p3at::vipars::parse_range;
 

@@ -148,7 +148,9 @@ TEST_CASE("each of issue 12's six mission kinds lists its approximations, locate
 
 TEST_CASE("patrol recalled mid-leg: verify's P(success) says GO, but it cannot be evaluated; the gate refuses") {
   const std::string mission = honest("patrol_recall", "mission.yaml");
-  const std::string models = honest("patrol_recall", "models.yaml");
+  // With Rmax 9.5 m the probabilities say GO (the patroller is predicted to
+  // halt 8.5 m from its goal); the loop and the interruption are unvouched.
+  const std::string models = honest("patrol_recall", "models.yaml") + " --rmax 9.5";
   const Run verify = run("verify " + mission + " --models " + models);
   CHECK(verify.status == 3);
   CHECK(verify.out.find("decision: CANNOT EVALUATE") != std::string::npos);
@@ -168,6 +170,9 @@ TEST_CASE("patrol recalled mid-leg: verify's P(success) says GO, but it cannot b
   // the approximations (exit 1, not 3), with or without the operator's acceptance.
   CHECK(run("gate " + mission + " --models " + models + " --tmax 20").status == 1);
   CHECK(run("gate " + mission + " --models " + models + " --tmax 20 --accept-unvouched").status == 1);
+  // At the mission's own Rmax (1.5 m) the model, which now places the
+  // interrupted patroller mid-leg, says NO-GO: NO-GO stays NO-GO.
+  CHECK(run("gate " + mission + " --models " + honest("patrol_recall", "models.yaml")).status == 1);
 }
 
 TEST_CASE("shipped examples whose kinds are vouched keep their GO / NO-GO") {

@@ -1,0 +1,190 @@
+// The campaign's lines, summary and JSON (result_json.hpp).
+
+#include "p3at/crosscheck/result_json.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace p3at::crosscheck {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json number_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+Json error_json(const ErrorSummary& e) {
+  Json j;
+  j["strict"] = e.strict;
+  j["tolerant"] = e.tolerant;
+  j["strict_at"] = {{"tmax_s", number_or_null(e.strict_at_tmax_s)}, {"rmax_m", number_or_null(e.strict_at_rmax_m)},
+                    {"verify", e.strict_verify}, {"validate", e.strict_validate}};
+  j["tolerant_at"] = {{"tmax_s", number_or_null(e.tolerant_at_tmax_s)}, {"rmax_m", number_or_null(e.tolerant_at_rmax_m)},
+                      {"verify", e.tolerant_verify}, {"validate", e.tolerant_validate}};
+  j["points"] = e.points;
+  return j;
+}
+
+MetricStats stats(std::vector<double> v, double bound) {
+  MetricStats s;
+  s.missions = v.size();
+  if (v.empty()) return s;
+  std::sort(v.begin(), v.end());
+  const auto rank = [&v](double p) {
+    const std::size_t k = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(v.size())));
+    return v[std::clamp<std::size_t>(k, 1, v.size()) - 1];
+  };
+  s.worst = v.back();
+  s.p50 = rank(50);
+  s.p90 = rank(90);
+  s.p95 = rank(95);
+  s.within = static_cast<std::size_t>(std::count_if(v.begin(), v.end(), [bound](double x) { return x <= bound; }));
+  return s;
+}
+
+Json stats_json(const MetricStats& s) {
+  return Json{{"worst", s.worst}, {"p50", s.p50}, {"p90", s.p90}, {"p95", s.p95}, {"within", s.within},
+              {"missions", s.missions}};
+}
+
+}  // namespace
+
+CampaignSummary summarize(const std::vector<MissionResult>& results, const Bounds& b) {
+  CampaignSummary s;
+  s.missions = results.size();
+  std::vector<double> ts, tt, rs, rt, js, jt;
+  for (const MissionResult& r : results) {
+    s.runs += r.runs;
+    if (!r.error.empty()) {
+      ++s.could_not_run;
+      continue;
+    }
+    ++s.scored;
+    ts.push_back(r.score.time.strict);
+    tt.push_back(r.score.time.tolerant);
+    rs.push_back(r.score.radius.strict);
+    rt.push_back(r.score.radius.tolerant);
+    js.push_back(r.score.joint.strict);
+    jt.push_back(r.score.joint.tolerant);
+    s.all_within_strict += r.score.within(b, false);
+    s.all_within_tolerant += r.score.within(b, true);
+    if (!r.evaluable) {
+      ++s.not_evaluable;
+      s.overconfident_cells_not_evaluable += r.score.overconfident_go_cells;
+    } else {
+      s.overconfident_cells += r.score.overconfident_go_cells;
+      s.overconfident_missions += r.score.overconfident_go_cells > 0;
+    }
+  }
+  s.time_strict = stats(ts, b.time);
+  s.time_tolerant = stats(tt, b.time);
+  s.radius_strict = stats(rs, b.radius);
+  s.radius_tolerant = stats(rt, b.radius);
+  s.joint_strict = stats(js, b.joint);
+  s.joint_tolerant = stats(jt, b.joint);
+  return s;
+}
+
+Json mission_result_json(const MissionResult& r) {
+  Json j;
+  j["name"] = r.name;
+  j["source"] = r.source;
+  j["generator_seed"] = r.generator_seed ? Json(*r.generator_seed) : Json(nullptr);
+  j["robots"] = r.robots;
+  j["error"] = r.error.empty() ? Json(nullptr) : Json(r.error);
+  j["evaluable"] = r.evaluable;
+  j["approximations"] = r.approximations;
+  j["calibration"] = r.calibration_note;
+  j["runs"] = r.runs;
+  j["failed_runs"] = r.failed_runs;
+  j["tmax_range"] = r.tmax_range;
+  j["rmax_range"] = r.rmax_range;
+  j["criteria"] = {{"tmax_s", r.criteria_tmax_s}, {"rmax_m", r.criteria_rmax_m},
+                   {"verify_p_joint", r.verify_p_joint}, {"validate_p_joint", r.validate_p_joint},
+                   {"verify_go", r.verify_go}};
+  j["time"] = error_json(r.score.time);
+  j["radius"] = error_json(r.score.radius);
+  j["joint"] = error_json(r.score.joint);
+  j["overconfident_go_cells"] = r.score.overconfident_go_cells;
+  Json cells = Json::array();
+  for (const OverconfidentCell& c : r.score.overconfident) {
+    cells.push_back({{"tmax_s", c.tmax_s}, {"rmax_m", c.rmax_m}, {"verify", c.verify}, {"validate", c.validate},
+                     {"ci_low", c.ci_low}, {"ci_high", c.ci_high}});
+  }
+  j["overconfident_worst"] = cells;
+  j["within_bounds_strict"] = r.error.empty() && r.score.within(Bounds{}, false);
+  j["within_bounds_tolerant"] = r.error.empty() && r.score.within(Bounds{}, true);
+  j["seconds"] = {{"calibrate", r.calibrate_s}, {"validate", r.validate_s}, {"verify", r.verify_s}};
+  j["folder"] = r.folder;
+  j["reproduce"] = r.reproduce;
+  return j;
+}
+
+Json summary_json(const CampaignSummary& s, const Bounds& b) {
+  Json j;
+  j["missions"] = s.missions;
+  j["scored"] = s.scored;
+  j["could_not_run"] = s.could_not_run;
+  j["not_evaluable"] = s.not_evaluable;
+  j["runs"] = s.runs;
+  j["bounds"] = {{"time", b.time}, {"radius", b.radius}, {"joint", b.joint}};
+  j["time"] = {{"strict", stats_json(s.time_strict)}, {"tolerant", stats_json(s.time_tolerant)}};
+  j["radius"] = {{"strict", stats_json(s.radius_strict)}, {"tolerant", stats_json(s.radius_tolerant)}};
+  j["joint"] = {{"strict", stats_json(s.joint_strict)}, {"tolerant", stats_json(s.joint_tolerant)}};
+  j["all_within_strict"] = s.all_within_strict;
+  j["all_within_tolerant"] = s.all_within_tolerant;
+  j["overconfident_go_cells"] = s.overconfident_cells;
+  j["overconfident_go_missions"] = s.overconfident_missions;
+  j["overconfident_go_cells_not_evaluable"] = s.overconfident_cells_not_evaluable;
+  return j;
+}
+
+std::string mission_line(const MissionResult& r, const Bounds& b) {
+  char buf[400];
+  if (!r.error.empty()) {
+    std::snprintf(buf, sizeof buf, "%-18s could not run: %s", r.name.c_str(), r.error.c_str());
+    return buf;
+  }
+  const MissionScore& s = r.score;
+  const char* verdict = s.within(b, false) ? "ok" : s.within(b, true) ? "ok within 1 %" : "FAIL";
+  std::snprintf(buf, sizeof buf,
+                "%-18s %zu robot%s  time %.3f / %.3f  radius %.3f / %.3f  joint %.3f / %.3f  over-confident GO %zu%s  %s",
+                r.name.c_str(), r.robots, r.robots == 1 ? " " : "s", s.time.strict, s.time.tolerant, s.radius.strict,
+                s.radius.tolerant, s.joint.strict, s.joint.tolerant, s.overconfident_go_cells,
+                r.evaluable ? "" : " (cannot evaluate)", verdict);
+  return buf;
+}
+
+std::string summary_text(const CampaignSummary& s, const Bounds& b) {
+  std::string out;
+  char buf[300];
+  std::snprintf(buf, sizeof buf, "missions %zu: scored %zu (of which verify cannot evaluate %zu), could not run %zu; %llu validation runs\n",
+                s.missions, s.scored, s.not_evaluable, s.could_not_run, static_cast<unsigned long long>(s.runs));
+  out += buf;
+  out += "max |verify - validate|     worst    p50    p90    p95   within bound\n";
+  const auto row = [&](const char* what, const MetricStats& m, double bound) {
+    const double pct = m.missions ? 100.0 * static_cast<double>(m.within) / static_cast<double>(m.missions) : 0.0;
+    std::snprintf(buf, sizeof buf, "%-26s %6.3f %6.3f %6.3f %6.3f   %zu of %zu (%.0f %%) <= %.2f\n", what, m.worst, m.p50,
+                  m.p90, m.p95, m.within, m.missions, pct, bound);
+    out += buf;
+  };
+  row("time curve, strict", s.time_strict, b.time);
+  row("time curve, 1 % shift", s.time_tolerant, b.time);
+  row("radius curve, strict", s.radius_strict, b.radius);
+  row("radius curve, 1 % shift", s.radius_tolerant, b.radius);
+  row("joint surface, strict", s.joint_strict, b.joint);
+  row("joint surface, 1 % shift", s.joint_tolerant, b.joint);
+  const auto pct = [&s](std::size_t k) { return s.scored ? 100.0 * static_cast<double>(k) / static_cast<double>(s.scored) : 0.0; };
+  std::snprintf(buf, sizeof buf, "all three within %.2f/%.2f/%.2f: strict %zu of %zu (%.0f %%), with the 1 %% shift %zu (%.0f %%)\n",
+                b.time, b.radius, b.joint, s.all_within_strict, s.scored, pct(s.all_within_strict), s.all_within_tolerant,
+                pct(s.all_within_tolerant));
+  out += buf;
+  std::snprintf(buf, sizeof buf,
+                "over-confident GO cells (verify >= 0.8, validation's 95 %% interval below 0.78): %zu on %zu evaluable "
+                "missions; %zu more on missions verify cannot evaluate\n",
+                s.overconfident_cells, s.overconfident_missions, s.overconfident_cells_not_evaluable);
+  out += buf;
+  return out;
+}
+
+}  // namespace p3at::crosscheck

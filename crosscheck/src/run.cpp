@@ -1,0 +1,211 @@
+// run_crosscheck(): the missions in order, a progress bar (or plain lines),
+// one line per mission, the summary, the JSON, the report and the baseline
+// check (run.hpp).
+
+#include "p3at/crosscheck/run.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "p3at/crosscheck/baseline.hpp"
+#include "p3at/crosscheck/campaign_report.hpp"
+#include "p3at/crosscheck/result_json.hpp"
+#include "p3at/common/vipars_exit.hpp"
+
+namespace p3at::crosscheck {
+namespace {
+
+using vipars::kExitBadInput;
+using vipars::kExitFailed;
+using vipars::kExitOk;
+constexpr int kExitWorse = 1;  ///< a mission worse than its baseline
+
+// One line on stderr, redrawn in place on a terminal.
+class Progress {
+ public:
+  Progress(std::size_t missions) : missions_(missions), tty_(isatty(STDERR_FILENO) == 1), t0_(clock::now()) {}
+
+  void update(std::size_t index, const std::string& name, const std::string& phase, std::uint64_t done, std::uint64_t total) {
+    if (!tty_) return;
+    const auto now = clock::now();
+    if (phase == "validating" && done != total && now - last_ < std::chrono::milliseconds(200)) return;
+    last_ = now;
+    const double frac = (static_cast<double>(index) + (total ? static_cast<double>(done) / static_cast<double>(total) : 0.0)) /
+                        static_cast<double>(missions_);
+    const int width = 30;
+    const int filled = static_cast<int>(frac * width);
+    const double elapsed = std::chrono::duration<double>(now - t0_).count();
+    const double left = frac > 0.01 ? elapsed * (1 - frac) / frac : 0.0;
+    std::fprintf(stderr, "\r[%.*s%.*s] %zu/%zu %-14s %s", filled, "##############################", width - filled,
+                 "..............................", index + 1, missions_, name.c_str(), phase.c_str());
+    if (phase == "validating") std::fprintf(stderr, " %llu/%llu runs", static_cast<unsigned long long>(done), static_cast<unsigned long long>(total));
+    std::fprintf(stderr, ", %.0f s left      ", left);
+    std::fflush(stderr);
+  }
+  void finished(std::size_t index, const MissionResult& r) {
+    if (tty_) {
+      std::fprintf(stderr, "\r%100s\r", "");
+      return;
+    }
+    std::fprintf(stderr, "vipars crosscheck: %zu/%zu %s %s in %.1f s\n", index + 1, missions_, r.name.c_str(),
+                 r.error.empty() ? "done" : "could not run", r.calibrate_s + r.verify_s + r.validate_s);
+  }
+
+ private:
+  using clock = std::chrono::steady_clock;
+  std::size_t missions_;
+  bool tty_;
+  clock::time_point t0_, last_{};
+};
+
+std::string command_line(const CrosscheckRun& run) {
+  std::string c = run.campaign.command_prefix;
+  if (run.first_seed) {
+    c += " --seeds " + std::to_string(*run.first_seed) + ":" + std::to_string(*run.last_seed) + " --robots " +
+         std::to_string(run.min_robots) + ":" + std::to_string(run.max_robots);
+  }
+  if (!run.folders.empty()) {
+    c += " --missions";
+    for (const std::string& f : run.folders) c += " " + f;
+    if (run.shipped_models) c += " --shipped-models";
+  }
+  c += " --runs " + std::to_string(run.campaign.runs) + " --seed " + std::to_string(run.campaign.seed) +
+       " --calibration-runs " + std::to_string(run.campaign.calibration_runs) + " --out " + run.campaign.out_dir;
+  return c;
+}
+
+}  // namespace
+
+int run_crosscheck(const CrosscheckRun& run) {
+  std::vector<MissionInput> inputs;
+  try {
+    if (run.first_seed) inputs = generated_inputs(*run.first_seed, *run.last_seed, run.min_robots, run.max_robots);
+    std::vector<MissionInput> more = folder_inputs(run.folders, run.shipped_models);
+    for (MissionInput& m : more) inputs.push_back(std::move(m));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "vipars crosscheck: %s\n", e.what());
+    return kExitBadInput;
+  }
+  if (inputs.empty()) {
+    std::fprintf(stderr, "vipars crosscheck: no missions: give --seeds A:B and/or --missions DIR...\n");
+    return kExitBadInput;
+  }
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (inputs[i].name == inputs[j].name) {
+        std::fprintf(stderr, "vipars crosscheck: two missions are named '%s' (%s and %s): their folders would collide\n",
+                     inputs[i].name.c_str(), inputs[j].source.c_str(), inputs[i].source.c_str());
+        return kExitBadInput;
+      }
+    }
+  }
+  std::vector<BaselineEntry> baseline;
+  if (!run.baseline.empty()) {
+    try {
+      baseline = load_baseline(run.baseline);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "vipars crosscheck: %s\n", e.what());
+      return kExitBadInput;
+    }
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(run.campaign.out_dir, ec);
+  if (ec) {
+    std::fprintf(stderr, "vipars crosscheck: cannot create %s: %s\n", run.campaign.out_dir.c_str(), ec.message().c_str());
+    return kExitFailed;
+  }
+
+  const Bounds bounds;
+  Progress progress(inputs.size());
+  std::vector<MissionResult> results;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    MissionResult r = run_mission(inputs[i], run.campaign, [&](const std::string& phase, std::uint64_t done, std::uint64_t total) {
+      progress.update(i, inputs[i].name, phase, done, total);
+    });
+    progress.finished(i, r);
+    {
+      // As each mission ends, so that a campaign stopped part-way still leaves its results.
+      std::ofstream partial(std::filesystem::path(run.campaign.out_dir) / "missions.jsonl", i == 0 ? std::ios::trunc : std::ios::app);
+      partial << mission_result_json(r).dump() << "\n";
+    }
+    if (!run.json) {
+      std::printf("%s\n", mission_line(r, bounds).c_str());
+      std::fflush(stdout);
+    }
+    results.push_back(std::move(r));
+  }
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const CampaignSummary summary = summarize(results, bounds);
+  const std::string command = command_line(run);
+
+  nlohmann::ordered_json doc;
+  doc["command"] = command;
+  doc["runs_per_mission"] = run.campaign.runs;
+  doc["seed"] = run.campaign.seed;
+  doc["summary"] = summary_json(summary, bounds);
+  doc["missions"] = nlohmann::ordered_json::array();
+  for (const MissionResult& r : results) doc["missions"].push_back(mission_result_json(r));
+  int status = kExitOk;
+  const std::filesystem::path out(run.campaign.out_dir);
+  {
+    std::ofstream f(out / "crosscheck.json");
+    f << doc.dump(2) << "\n";
+    std::ofstream t(out / "summary.txt");
+    t << "# " << command << "\n";
+    for (const MissionResult& r : results) t << mission_line(r, bounds) << "\n";
+    t << summary_text(summary, bounds);
+    if (!f || !t) status = kExitFailed;
+  }
+  if (run.json) {
+    std::printf("%s\n", doc.dump(2).c_str());
+  } else {
+    std::printf("\n%s", summary_text(summary, bounds).c_str());
+    bool listed = false;
+    for (const MissionResult& r : results) {
+      if (!r.evaluable && r.error.empty()) {
+        if (!listed) std::printf("verify cannot evaluate (scored, left out of the over-confident GO count):\n");
+        listed = true;
+        std::printf("  %s: %zu approximation%s\n", r.name.c_str(), r.approximations.size(), r.approximations.size() == 1 ? "" : "s");
+      }
+    }
+    std::printf("redo one mission: see %s/missions/NAME/commands.txt, e.g.\n  %s\n", run.campaign.out_dir.c_str(),
+                results.front().reproduce.empty() ? command.c_str() : results.front().reproduce.c_str());
+  }
+  if (run.report) {
+    ReportOptions ro;
+    ro.out_dir = run.campaign.out_dir;
+    ro.gnuplot = run.campaign.gnuplot;
+    ro.command = command;
+    for (const std::string& p : write_campaign_report(results, summary, bounds, ro)) {
+      std::fprintf(stderr, "vipars crosscheck: report: %s\n", p.c_str());
+    }
+    std::fprintf(stderr, "vipars crosscheck: report %s/index.html\n", run.campaign.out_dir.c_str());
+  }
+  if (!run.write_baseline.empty()) {
+    std::ofstream b(run.write_baseline);
+    b << baseline_json(baseline_from(results, bounds, run.baseline_margin), command).dump(2) << "\n";
+    if (!b) {
+      std::fprintf(stderr, "vipars crosscheck: cannot write %s\n", run.write_baseline.c_str());
+      status = kExitFailed;
+    }
+  }
+  for (const MissionResult& r : results) {
+    if (!r.error.empty()) status = kExitFailed;
+  }
+  if (!run.baseline.empty()) {
+    const std::vector<std::string> worse = check_baseline(results, baseline);
+    for (const std::string& w : worse) std::fprintf(stderr, "vipars crosscheck: worse than %s: %s\n", run.baseline.c_str(), w.c_str());
+    if (!worse.empty() && status == kExitOk) status = kExitWorse;
+    if (worse.empty()) std::fprintf(stderr, "vipars crosscheck: every mission within %s\n", run.baseline.c_str());
+  }
+  std::fprintf(stderr, "vipars crosscheck: missions=%zu runs=%llu wall_s=%.1f\n", results.size(),
+               static_cast<unsigned long long>(summary.runs), wall_s);
+  return status;
+}
+
+}  // namespace p3at::crosscheck

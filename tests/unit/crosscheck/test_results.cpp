@@ -1,0 +1,135 @@
+// The campaign's summary statistics, JSON shape and baseline check on
+// hand-made mission results.
+
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "p3at/crosscheck/baseline.hpp"
+#include "p3at/crosscheck/result_json.hpp"
+
+using namespace p3at::crosscheck;
+
+namespace {
+
+MissionResult result(const std::string& name, double time, double radius, double joint, std::size_t overconfident,
+                     bool evaluable = true) {
+  MissionResult r;
+  r.name = name;
+  r.generator_seed = 1;
+  r.robots = 2;
+  r.runs = 1000;
+  r.evaluable = evaluable;
+  r.score.time.strict = time;
+  r.score.time.tolerant = time / 2;
+  r.score.radius.strict = radius;
+  r.score.radius.tolerant = radius / 2;
+  r.score.joint.strict = joint;
+  r.score.joint.tolerant = joint / 2;
+  r.score.overconfident_go_cells = overconfident;
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("summary: percentiles by nearest rank, fractions within the bounds, GO cells of evaluable missions only") {
+  std::vector<MissionResult> rs;
+  for (int k = 1; k <= 10; ++k) rs.push_back(result("m" + std::to_string(k), 0.01 * k, 0.02, 0.03 * k, 0));
+  rs[9].score.overconfident_go_cells = 7;               // evaluable
+  rs[8].score.overconfident_go_cells = 4;
+  rs[8].evaluable = false;                              // listed apart
+  MissionResult broken;
+  broken.name = "broken";
+  broken.error = "world does not load";
+  rs.push_back(broken);
+  const CampaignSummary s = summarize(rs, Bounds{});
+  CHECK(s.missions == 11);
+  CHECK(s.scored == 10);
+  CHECK(s.could_not_run == 1);
+  CHECK(s.not_evaluable == 1);
+  CHECK(s.runs == 10000);
+  CHECK(s.time_strict.worst == doctest::Approx(0.10));
+  CHECK(s.time_strict.p50 == doctest::Approx(0.05));
+  CHECK(s.time_strict.p90 == doctest::Approx(0.09));
+  CHECK(s.time_strict.p95 == doctest::Approx(0.10));
+  CHECK(s.time_strict.within == 5);                     // 0.01 .. 0.05 <= 0.05
+  CHECK(s.time_tolerant.within == 10);                  // halves: all <= 0.05
+  CHECK(s.joint_strict.within == 2);                    // 0.03, 0.06 <= 0.08
+  CHECK(s.all_within_strict == 2);
+  CHECK(s.overconfident_cells == 7);
+  CHECK(s.overconfident_missions == 1);
+  CHECK(s.overconfident_cells_not_evaluable == 4);
+  const std::string text = summary_text(s, Bounds{});
+  CHECK(text.find("missions 11: scored 10") != std::string::npos);
+  CHECK(text.find("7 on 1 evaluable") != std::string::npos);
+}
+
+TEST_CASE("JSON: the keys a machine reads, in order") {
+  MissionResult r = result("gen_4", 0.02, 0.01, 0.03, 1);
+  r.approximations = {"NOISE redrawn inside a leg"};
+  const auto j = mission_result_json(r);
+  std::vector<std::string> keys;
+  for (auto it = j.begin(); it != j.end(); ++it) keys.push_back(it.key());
+  const std::vector<std::string> expected{"name", "source", "generator_seed", "robots", "error", "evaluable",
+                                          "approximations", "calibration", "runs", "failed_runs", "tmax_range",
+                                          "rmax_range", "criteria", "time", "radius", "joint",
+                                          "overconfident_go_cells", "overconfident_worst", "within_bounds_strict",
+                                          "within_bounds_tolerant", "seconds", "folder", "reproduce"};
+  CHECK(keys == expected);
+  CHECK(j["time"]["strict"] == 0.02);
+  CHECK(j["time"]["tolerant"] == 0.01);
+  CHECK(j["time"]["strict_at"]["rmax_m"].is_null());   // NaN is not JSON: null
+  CHECK(j["error"].is_null());
+  CHECK(j["approximations"][0] == "NOISE redrawn inside a leg");
+  CHECK(j["within_bounds_strict"] == true);
+  const auto s = summary_json(summarize({r}, Bounds{}), Bounds{});
+  for (const char* k : {"missions", "scored", "could_not_run", "not_evaluable", "runs", "bounds", "time", "radius", "joint",
+                        "all_within_strict", "all_within_tolerant", "overconfident_go_cells", "overconfident_go_missions",
+                        "overconfident_go_cells_not_evaluable"}) {
+    CHECK(s.contains(k));
+  }
+  CHECK(s["time"]["strict"]["worst"] == 0.02);
+  CHECK(s["bounds"]["joint"] == 0.08);
+  CHECK(mission_line(r, Bounds{}).find("gen_4") == 0);
+}
+
+TEST_CASE("baseline: measured + margin for generated missions, the bounds for shipped ones; worse fails") {
+  MissionResult gen = result("gen_1", 0.10, 0.02, 0.15, 4);
+  MissionResult shipped = result("relay", 0.01, 0.01, 0.02, 0);
+  shipped.generator_seed.reset();
+  const auto entries = baseline_from({gen, shipped}, Bounds{}, 0.03);
+  REQUIRE(entries.size() == 2);
+  CHECK(entries[0].time == doctest::Approx(0.13));
+  CHECK(entries[0].joint == doctest::Approx(0.18));
+  CHECK(entries[0].joint_tolerant == doctest::Approx(0.105));
+  CHECK(entries[0].overconfident_go_cells == 7);
+  CHECK(entries[1].time == 0.05);
+  CHECK(entries[1].joint == 0.08);
+  CHECK(entries[1].overconfident_go_cells == 0);
+
+  const std::string path = (std::filesystem::temp_directory_path() / "p3at_unit_baseline.json").string();
+  std::ofstream(path) << baseline_json(entries, "test").dump(2);
+  const auto loaded = load_baseline(path);
+  REQUIRE(loaded.size() == 2);
+  CHECK(loaded[0].joint == doctest::Approx(0.18));
+  CHECK(check_baseline({gen, shipped}, loaded).empty());
+
+  MissionResult worse = gen;
+  worse.score.joint.strict = 0.19;
+  MissionResult over = shipped;
+  over.score.time.strict = 0.06;
+  over.score.overconfident_go_cells = 1;
+  MissionResult unknown = result("gen_99", 0, 0, 0, 0);
+  const auto v = check_baseline({worse, over, unknown}, loaded);
+  REQUIRE(v.size() == 4);
+  CHECK(v[0] == "gen_1: joint strict 0.190 > 0.180");
+  CHECK(v[1] == "relay: time strict 0.060 > 0.050");
+  CHECK(v[2] == "relay: 1 over-confident GO cells > 0");
+  CHECK(v[3].find("gen_99: not in the baseline") == 0);
+  std::ofstream(path) << "{\"missions\": [{\"name\": 3}]}";
+  CHECK_THROWS_AS(load_baseline(path), std::runtime_error);
+  std::filesystem::remove(path);
+}
