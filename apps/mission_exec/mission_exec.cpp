@@ -77,6 +77,10 @@ int main(int argc, char** argv) {
   app.add_flag("--override-gate", opt.override_gate,
                "Operator override: vote OVERRIDE (launch) whatever this robot's verifier says; logged and published "
                "as OVERRIDE. A teammate's NO-GO, a hash mismatch or a silent teammate still refuse");
+  app.add_flag("--accept-unvouched", opt.check.accept_unvouched,
+               "Operator's decision: launch a mission whose probabilities say GO although the model does not vouch "
+               "for one of its approximations (docs/verifier.md); without it such a mission is refused with exit 7. "
+               "Logged, and published as OVERRIDE");
   app.add_option("--hal", opt.hal_url, "Robot URL: tcp://127.0.0.1:8101 or serial:///dev/ttyS0?baud=9600");
   app.add_option("--lcm", opt.lcm_url, "Team link LCM URL, e.g. udpm://239.255.76.67:7667?ttl=1");
   app.add_option("--team-key", opt.team_key_file, "Team key file (else $P3AT_TEAM_KEY names it)");

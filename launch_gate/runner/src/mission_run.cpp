@@ -116,7 +116,9 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
   if (!key) return bad_input(key.error().message);
 
   // ---- the pre-launch check, before anything else: load, hash, verify
-  const gate::CheckRequest& request = opt.check;
+  gate::CheckRequest request = opt.check;
+  // --override-gate overrides every verifier decision, cannot-evaluate included.
+  request.accept_unvouched = opt.check.accept_unvouched || opt.override_gate;
   const gate::CheckReport report = gate::pre_launch_check(request, gate::verifier_source());
   p3at::log::info(kLog, "event=gate-check robot=" + opt.robot + " " + gate::check_fields(report));
   if (report.status == gate::CheckStatus::bad_input) return bad_input(report.error);
@@ -210,8 +212,14 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
   if (arm_signals) arm_signals();
   if (opt.override_gate) {
     p3at::log::warn(kLog, "event=gate-override robot=" + spec.name + " verifier_decision=" +
-                              (report.result.go ? "GO" : "NO-GO") + " p_joint=" + gate::fixed(own.p_joint, 4) +
-                              " threshold=" + gate::fixed(own.threshold, 4) + " operator=--override-gate");
+                              (report.result.go ? (report.result.evaluable ? "GO" : "CANNOT-EVALUATE") : "NO-GO") +
+                              " p_joint=" + gate::fixed(own.p_joint, 4) + " threshold=" + gate::fixed(own.threshold, 4) +
+                              " operator=--override-gate");
+  } else if (report.accepted_unvouched) {
+    p3at::log::warn(kLog, "event=gate-accept-unvouched robot=" + spec.name + " unvouched=" +
+                              p3at::verifier::unvouched_kinds(report.result.approximations) +
+                              " p_joint=" + gate::fixed(own.p_joint, 4) + " threshold=" + gate::fixed(own.threshold, 4) +
+                              " operator=--accept-unvouched");
   }
 
   // A robot whose own verdict is NO-GO never even connects: it only tells the team.

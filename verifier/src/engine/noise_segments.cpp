@@ -246,6 +246,8 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const Walker& start
           }
           if (w.cycles >= cap) {
             out.stuck += w.weight;
+            out.stuck_x_m += w.weight * w.q.x_m;
+            out.stuck_y_m += w.weight * w.q.y_m;
             break;
           }
           if (w.cycles >= until) {

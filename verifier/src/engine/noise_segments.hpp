@@ -40,6 +40,8 @@ struct FinishedPath {
 struct NoiseQuadrature {
   std::vector<FinishedPath> finished;
   double stuck = 0.0;              ///< mass still moving at the cycle cap
+  double stuck_x_m = 0.0;          ///< mass-weighted sum of where the stuck walkers were (divide by stuck)
+  double stuck_y_m = 0.0;
   std::size_t redraws = 0;         ///< segments after the first that carried mass
   std::vector<PathSample> mean_path;  ///< the mean odometric position every second (finished paths stay put)
   std::size_t cycles_simulated = 0;

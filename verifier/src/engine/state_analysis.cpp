@@ -305,6 +305,8 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   StateAnalysis a;
   a.cycles_simulated = quad.cycles_simulated;
   a.blocked = quad.stuck;
+  a.blocked_x_m = quad.stuck_x_m;  // divided by `blocked` below (where it is reported)
+  a.blocked_y_m = quad.stuck_y_m;
   // Where the state ends (pose, error, end points): from the held-direction
   // quadrature when one draw lasts over the whole approach (the draw held at
   // full speed covers twice the slow-down) and every held path finishes,
@@ -343,6 +345,10 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
     a.end.theta_rad += w * p.walker.q.theta_rad;
     a.end.trans_mps += w * p.walker.q.trans_mps;
     a.end.rot_radps += w * p.walker.q.rot_radps;
+  }
+  if (a.blocked > 0.0) {
+    a.blocked_x_m /= a.blocked;
+    a.blocked_y_m /= a.blocked;
   }
   if (finished <= 0.0) {
     a.end = start;
@@ -447,7 +453,11 @@ StateAnalysis analyze_still(const StateContext& ctx, std::size_t state, const Ba
     }
   }
   const bool waits = has_trigger_kind(robot, state, mission::TriggerKind::notified);
-  if (a.exits.empty() && !waits && !robot.is_final(state)) a.blocked = 1.0;
+  if (a.exits.empty() && !waits && !robot.is_final(state)) {
+    a.blocked = 1.0;
+    a.blocked_x_m = start.x_m;
+    a.blocked_y_m = start.y_m;
+  }
   return a;
 }
 

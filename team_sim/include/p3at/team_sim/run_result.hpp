@@ -24,7 +24,9 @@ struct RobotResult {
 struct RunResult {
   std::uint64_t run = 0;
   std::uint64_t seed = 0;
-  std::string outcome;               ///< "success" when every robot finished its FSA, else the reason
+  /// "success" when every robot finished its FSA, else the reason: "aborted (robot: why)", or
+  /// "timeout (robot in 'state' waiting for 'message' from robot | not moving (pinned) | still moving; ...)"
+  std::string outcome;
   double time_s = 0.0;               ///< when the last robot finished (mission completion time)
   double closest_approach_m = 0.0;   ///< smallest true centre distance between any two robots
   std::uint64_t cycles = 0;
