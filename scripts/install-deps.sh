@@ -13,6 +13,8 @@
 #   gnuplot-nox                       report figures (PNG and SVG)
 #   can-utils busybox-static user-mode-linux   real SocketCAN tests inside a user-mode Linux kernel
 #   python3                           small test drivers (stdlib only)
+#   qemu-system-x86                   the serial rig: a real 8250 driver on an emulated 16550 UART
+#                                     (scripts/run-serial-tests.sh; libserialport refuses ptys)
 #   munge slurmctld slurmd slurm-client   a real single-node Slurm (cluster/slurm-local-up.sh) for the CI test of
 #                                     sharded validation: labs run big campaigns on Slurm (docs/cluster.md)
 set -euo pipefail
@@ -24,6 +26,7 @@ PACKAGES=(
   libeigen3-dev libserialport-dev liblcm-dev liblcm-bin doctest-dev libsodium-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev gnuplot-nox
   can-utils busybox-static user-mode-linux python3 procps iproute2
+  qemu-system-x86
   munge slurmctld slurmd slurm-client
 )
 missing=()

@@ -17,6 +17,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "p3at/common/cli_exit.hpp"
 #include "p3at/common/log.hpp"
 #include "p3at/launch_gate/exit_codes.hpp"
 #include "p3at/launch_gate/mission_run.hpp"
@@ -34,6 +35,9 @@ void install_signal_handlers() {
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
+  // A closed terminal or ssh session: stop like SIGTERM (abort sent, summary
+  // printed) rather than die silently with 129 while the teammates wait.
+  sigaction(SIGHUP, &sa, nullptr);
   std::signal(SIGPIPE, SIG_IGN);  // a vanished peer is an error value, not a fatal signal
 }
 
@@ -73,6 +77,10 @@ int main(int argc, char** argv) {
   app.add_flag("--override-gate", opt.override_gate,
                "Operator override: vote OVERRIDE (launch) whatever this robot's verifier says; logged and published "
                "as OVERRIDE. A teammate's NO-GO, a hash mismatch or a silent teammate still refuse");
+  app.add_flag("--accept-unvouched", opt.check.accept_unvouched,
+               "Operator's decision: launch a mission whose probabilities say GO although the model does not vouch "
+               "for one of its approximations (docs/verifier.md); without it such a mission is refused with exit 7. "
+               "Logged, and published as OVERRIDE");
   app.add_option("--hal", opt.hal_url, "Robot URL: tcp://127.0.0.1:8101 or serial:///dev/ttyS0?baud=9600");
   app.add_option("--lcm", opt.lcm_url, "Team link LCM URL, e.g. udpm://239.255.76.67:7667?ttl=1");
   app.add_option("--team-key", opt.team_key_file, "Team key file (else $P3AT_TEAM_KEY names it)");
@@ -86,7 +94,20 @@ int main(int argc, char** argv) {
                  "(default 5)")
       ->check(CLI::Range(0.0, 600.0));
   app.add_option("--telemetry-every", opt.telemetry_every, "Publish telemetry every N cycles; 0 = never (default 1)");
-  CLI11_PARSE(app, argc, argv);
+  app.add_option("--teammate-silence-s", opt.teammate_silence_s,
+                 "During the mission, a teammate silent this long (wall seconds) is reported and the mission's "
+                 "abort_action taken (default 3)")
+      ->check(CLI::Range(0.2, 3600.0));
+  app.add_option("--overtime-s", opt.overtime_s,
+                 "Abort, saying so, when still running this long past Tmax (mission seconds); 0 = never (default 30)")
+      ->check(CLI::Range(0.0, 86400.0));
+  app.add_option("--stall-abort-ms", opt.stall_abort_ms,
+                 "A stall of this process longer than this aborts the mission (the firmware watchdog, default "
+                 "2000); 0 = never")
+      ->check(CLI::Range(0, 3'600'000));
+  app.add_flag("--resume-after-stall", opt.resume_after_stall,
+               "After a stall longer than --stall-abort-ms, go on (saying so) instead of aborting");
+  P3AT_CLI_PARSE(app, argc, argv);
   p3at::log::threshold() = parse_level(log_level);
   opt.team_key_env = std::getenv("P3AT_TEAM_KEY");
   return p3at::gate::run_mission(opt, g_stop, install_signal_handlers);

@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <string>
 
+#include "p3at/common/cli_exit.hpp"
 #include "p3at/sim/can/node_commands.hpp"
 #include "p3at/hal/can_bus.hpp"
 #include "p3at/hal/clock.hpp"
@@ -79,7 +80,7 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   app.footer(p3at::can_sim::command_help());
-  CLI11_PARSE(app, argc, argv);
+  P3AT_CLI_PARSE(app, argc, argv);
   if (no_gyro && no_safety) {
     std::fprintf(stderr, "p3at_can_sim: --no-gyro and --no-safety leave nothing to simulate\n");
     return 2;
@@ -96,7 +97,8 @@ int main(int argc, char** argv) {
   auto bus = p3at::hal::open_can_bus(bus_url);
   if (!bus) {
     std::fprintf(stderr, "p3at_can_sim: %s\n", bus.error().message.c_str());
-    return 1;
+    // A malformed URL is bad input (2); a missing interface is not.
+    return bus.error().code == p3at::Error::Code::invalid_argument ? 2 : 1;
   }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "drive_commands.hpp"
+#include "p3at/common/cli_exit.hpp"
 #include "p3at/bridge/arcos_client.hpp"
 #include "p3at/common/log.hpp"
 #include "p3at/hal/byte_stream.hpp"
@@ -95,7 +96,7 @@ int main(int argc, char** argv) {
   square->excludes(secs);
   (void)vel;
 
-  CLI11_PARSE(app, argc, argv);
+  P3AT_CLI_PARSE(app, argc, argv);
   if (drive->parsed() && !square->count() && !secs->count()) {
     std::fprintf(stderr, "p3at_ctl: drive needs --secs S (with --vel/--rotvel) or --square M\n");
     return 2;
@@ -122,7 +123,8 @@ int main(int argc, char** argv) {
 
   if (auto st = robot.connect(); !st) {
     std::fprintf(stderr, "p3at_ctl: cannot connect to %s: %s\n", url.c_str(), st.error().message.c_str());
-    return 1;
+    // A malformed URL (an unknown scheme…) is bad input, like a bad flag.
+    return st.error().code == p3at::Error::Code::invalid_argument ? 2 : 1;
   }
   int rc = 0;
   if (status->parsed()) {

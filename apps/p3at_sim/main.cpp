@@ -173,7 +173,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return app.exit(e) == 0 ? 0 : 2;  // bad arguments: 2, as every binary (README)
   }
   if (*port_opt) opt.first_port = port;
   if (*seed_opt) opt.seed = seed;

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <string>
 
+#include "p3at/common/cli_exit.hpp"
 #include "p3at/team_link/team_key.hpp"
 
 int main(int argc, char** argv) {
@@ -28,7 +29,7 @@ int main(int argc, char** argv) {
   app.add_option("FILE", path, "Key file to write (or to check with --check)")->required();
   app.add_flag("--force", force, "Replace an existing key file");
   app.add_flag("--check", check, "Only validate FILE and print its fingerprint");
-  CLI11_PARSE(app, argc, argv);
+  P3AT_CLI_PARSE(app, argc, argv);
 
   if (check) {
     auto key = p3at::hal::load_team_key(path);

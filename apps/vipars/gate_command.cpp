@@ -18,6 +18,13 @@ namespace {
 // The flags fill the pre-launch check's request directly, as mission_exec's do.
 int run_gate(const gate::CheckRequest& request) {
   const gate::CheckReport report = gate::pre_launch_check(request, gate::verifier_source());
+  if (report.accepted_unvouched) {
+    // Logged where the operator sees it, as mission_exec logs it on every robot.
+    std::fprintf(stderr, "vipars gate: event=gate-accept-unvouched unvouched=%s p_joint=%.4f threshold=%.4f "
+                         "operator=--accept-unvouched\n",
+                 verifier::unvouched_kinds(report.result.approximations).c_str(), report.result.p_joint,
+                 report.result.threshold);
+  }
   switch (report.status) {
     case gate::CheckStatus::go:
     case gate::CheckStatus::no_go:
@@ -28,8 +35,9 @@ int run_gate(const gate::CheckRequest& request) {
       std::fprintf(stderr, "vipars gate: %s\n", report.error.c_str());
       return kExitBadInput;
     case gate::CheckStatus::cannot_run:
+    case gate::CheckStatus::cannot_evaluate:
       std::fputs(gate::format_check(report).c_str(), stdout);
-      return kExitFailed;
+      return kExitCannotEvaluate;
   }
   return kExitFailed;
 }
@@ -43,7 +51,8 @@ void register_gate(CLI::App& app, int& exit_status) {
       "The launch gate's check, before anything is deployed: the same verification every robot makes before it "
       "moves (docs/launch-gate.md), as a clear GO / NO-GO with the probabilities and the mission's content hash. "
       "Exit 0 = GO, 1 = NO-GO, 2 = bad input (unreadable mission, models or flags; no models file), "
-      "3 = the verifier cannot evaluate the mission with these models.");
+      "3 = the verifier cannot evaluate the mission with these models (it cannot run, or the mission has an "
+      "approximation the model does not vouch for: docs/verifier.md; --accept-unvouched to launch anyway).");
   sub->add_option("mission", flags->mission_path, "mission file (YAML, docs/mission-format.md)")->required();
   sub->add_option("--models", flags->models_path,
                   "robot models file (docs/verifier.md); default: models.yaml beside the mission file, as on the "
@@ -53,6 +62,9 @@ void register_gate(CLI::App& app, int& exit_status) {
   sub->add_option("--threshold", flags->options.threshold, "override the mission's launch threshold P")
       ->check(CLI::Range(0.0, 1.0));
   sub->add_option("--criterion", flags->criteria_files, "extra criterion file (PARS, docs/verifier.md); repeatable");
+  sub->add_flag("--accept-unvouched", flags->accept_unvouched,
+                "Operator's decision: a mission whose probabilities say GO but whose approximations the model does not "
+                "vouch for is GO (logged; the robots publish it as OVERRIDE) instead of cannot-evaluate (exit 3)");
   sub->callback([flags, &exit_status] { exit_status = run_gate(*flags); });
 }
 

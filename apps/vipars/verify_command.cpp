@@ -60,12 +60,18 @@ int run_verify(const VerifyFlags& f) {
     std::fprintf(stderr, "vipars verify: %s\n", result.error().message.c_str());
     return kExitBadInput;
   }
+  locate_from_file(*result, f.mission_file);
   if (f.json) {
     std::cout << verify_json(*mission, *result).dump(2) << "\n";
   } else {
     std::cout << verify_text(*mission, *result);
   }
-  return result->go ? kExitOk : kExitNoGo;
+  switch (verifier::decision(*result)) {
+    case verifier::Decision::go: return kExitOk;
+    case verifier::Decision::no_go: return kExitNoGo;
+    case verifier::Decision::cannot_evaluate: return kExitCannotEvaluate;
+  }
+  return kExitFailed;
 }
 
 }  // namespace
@@ -75,7 +81,9 @@ void register_verify(CLI::App& app, int& exit_status) {
   CLI::App* sub = app.add_subcommand(
       "verify",
       "Verify a mission: P(t <= Tmax), P(every robot within Rmax of its goal) and their joint, from the mission "
-      "and the robot models (no sampling). Exit 0 = GO, 1 = NO-GO, 2 = bad input.");
+      "and the robot models (no sampling), and the model's approximations on this mission. Exit 0 = GO, 1 = NO-GO, "
+      "2 = bad input, 3 = cannot evaluate (GO by the probabilities, but an approximation the model does not vouch "
+      "for; docs/verifier.md).");
   sub->add_option("mission", flags->mission_file, "mission file (YAML, docs/mission-format.md)")->required();
   sub->add_option("--models", flags->models_file, "robot models file (docs/robot-models.md)")->required();
   sub->add_option("--tmax", flags->tmax_s, "Tmax in seconds (default: the mission's criteria)");

@@ -15,6 +15,12 @@ void CycleStats::record(double compute_us, bool missed_update) {
   filled_ = std::min(filled_ + 1, kWindow);
 }
 
+void CycleStats::record_stall(std::uint64_t missed_cycles, std::int64_t stall_ms) {
+  ++stalls_;
+  missed_cycles_ += missed_cycles;
+  longest_stall_ms_ = std::max(longest_stall_ms_, stall_ms);
+}
+
 double CycleStats::percentile_us(double p) const {
   if (filled_ == 0) return 0.0;
   // A copy on the stack (8 KiB), so the statistics stay const and allocation-free.

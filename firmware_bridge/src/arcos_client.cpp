@@ -90,6 +90,10 @@ Status ArcosClient::handshake() {
     }
   }
 
+  // What came back during the handshake says why it failed: nothing, garbage
+  // (a wrong device or baud rate), or packets with bad checksums (noise).
+  const arcos::DecoderStats decoder_at_start = decoder_.stats();
+  handshake_bytes_ = 0;
   Status synced = make_error(Error::Code::timeout, stream_->describe() + ": no robot responding (SYNC0 unanswered)");
   while (clock_.now_us() < deadline) {
     synced = sync_once();
@@ -99,7 +103,8 @@ Status ArcosClient::handshake() {
   }
   if (!synced) {
     return make_error(Error::Code::timeout, stream_->describe() + ": could not connect, no robot responding (" +
-                                                synced.error().message + ")");
+                                                synced.error().message + "; " + handshake_diagnosis(decoder_at_start) +
+                                                ")");
   }
 
   info_.params = arcos::RobotParams::for_subclass(info_.identity.subclass);
@@ -205,9 +210,31 @@ Result<arcos::Packet> ArcosClient::wait_for_packet(std::optional<std::uint8_t> i
       decoder_.expire(clock_.now_us());
       continue;
     }
+    handshake_bytes_ += got.value();
     decoder_.feed(std::span<const std::uint8_t>(buffer.data(), got.value()), clock_.now_us(),
                   [this](const arcos::Packet& p) { inbox_.push_back(p); });
   }
+}
+
+std::string ArcosClient::handshake_diagnosis(const arcos::DecoderStats& before) const {
+  const arcos::DecoderStats& now = decoder_.stats();
+  if (handshake_bytes_ == 0) return "nothing came back";
+  const std::uint64_t packets = now.packets - before.packets;
+  const std::uint64_t bad_checksum = now.bad_checksum - before.bad_checksum;
+  const std::uint64_t garbage = now.discarded_bytes - before.discarded_bytes;
+  const std::uint64_t other_bad = (now.bad_header - before.bad_header) + (now.bad_count - before.bad_count) +
+                                  (now.timeouts - before.timeouts);
+  std::string out = std::to_string(handshake_bytes_) + " bytes came back: ";
+  if (bad_checksum > 0) {
+    out += std::to_string(bad_checksum) + " packets with bad checksums (a noisy line, or a wrong baud rate?)";
+  } else if (packets == 0) {
+    out += "garbage, no ARCOS packet (" + std::to_string(garbage) + " bytes skipped; not a Pioneer, or a wrong "
+           "baud rate?)";
+  } else {
+    out += std::to_string(packets) + " packets, none the SYNC echo expected";
+  }
+  if (other_bad > 0) out += ", " + std::to_string(other_bad) + " malformed frames";
+  return out;
 }
 
 Status ArcosClient::read_and_dispatch(int timeout_ms) {
@@ -301,6 +328,7 @@ Status ArcosClient::set_velocity(double trans_mps, double rot_radps) {
     return make_error(Error::Code::state, std::string("motion refused: link ") + hal::to_string(state_.link) +
                                               (estop_latched_ ? ", emergency stop latched" : ""));
   }
+  sips_at_motion_request_ = stats_.sips;
   const int vel = round_to_int(trans_mps * 1000.0);
   const int rvel = round_to_int(rot_radps * 180.0 / kPi);
   if (vel != vel_mm_s_ || !motion_active_) {
@@ -368,6 +396,16 @@ void ArcosClient::service_keepalive() {
   const bool time_due = clock_.now_us() - last_sent_us_ >= std::int64_t{config_.keepalive_ms} * 1000;
   const bool sips_due = stats_.sips - sips_at_last_send_ >= static_cast<std::uint64_t>(config_.keepalive_sips);
   if (!time_due && !sips_due) return;
+  if (motion_active_ && config_.motion_stale_sips > 0 &&
+      stats_.sips - sips_at_motion_request_ >= static_cast<std::uint64_t>(config_.motion_stale_sips)) {
+    // Nobody has asked for this motion for a while (the caller stalled, or is
+    // reading a backlog of SIPs): repeating it would drive on stale
+    // decisions. Stop instead; the caller's next set_velocity() resumes.
+    log::warn(config_.log_name, "event=stale-motion-stop sips_since_request=" +
+                                    std::to_string(stats_.sips - sips_at_motion_request_));
+    if (stop()) ++stats_.stale_motion_stops;
+    return;
+  }
   // Like ARIA: repeat a motion command in force, otherwise PULSE.
   const Status st = motion_active_ ? send_motion() : send(arcos::encode_command(arcos::Command::pulse));
   if (st) ++stats_.keepalives_sent;

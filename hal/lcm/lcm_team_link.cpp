@@ -2,6 +2,9 @@
 // LCM has queued with handleTimeout(0) and never waits.
 #include "p3at/hal/lcm_team_link.hpp"
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+
 #include <lcm/lcm-cpp.hpp>
 
 #include <chrono>
@@ -89,6 +92,18 @@ Result<std::unique_ptr<gate::VerdictLink>> open_lcm_team_link(std::string_view l
   if (parsed->scheme != "udpm" && parsed->scheme != "memq") {
     return make_error(Error::Code::invalid_argument,
                       "team link: unsupported LCM URL '" + url + "' (expected udpm://GROUP:PORT?ttl=N or memq://)");
+  }
+  if (parsed->scheme == "udpm") {
+    // LCM would only say it cannot open; a malformed URL is the caller's input error.
+    in_addr group{};
+    if (::inet_pton(AF_INET, parsed->host.c_str(), &group) != 1 || (ntohl(group.s_addr) >> 28) != 14) {
+      return make_error(Error::Code::invalid_argument, "team link: LCM URL '" + url + "': '" + parsed->host +
+                                                           "' is not an IPv4 multicast group (224.0.0.0/4)");
+    }
+    if (parsed->port <= 0) {
+      return make_error(Error::Code::invalid_argument,
+                        "team link: LCM URL '" + url + "': needs a port (udpm://GROUP:PORT?ttl=N)");
+    }
   }
   const auto wall = std::chrono::system_clock::now();
   const auto steady = std::chrono::steady_clock::now();

@@ -18,13 +18,19 @@ std::string line(const std::string& label, const std::string& value) {
 std::string format_check(const CheckReport& report) {
   std::string out;
   const std::string name = report.mission ? report.mission->name : report.mission_path;
-  if (!report.verified()) {
+  if (!report.evaluated()) {
     out += std::string(to_string(report.status)) + "  mission " + name + ": the launch gate cannot decide\n";
     out += "  " + report.error + "\n";
     return out;
   }
   const verifier::VerifyResult& r = report.result;
-  out += std::string(report.status == CheckStatus::go ? "GO" : "NO-GO") + "  mission " + name + "\n";
+  if (report.status == CheckStatus::cannot_evaluate) {
+    out += "CANNOT EVALUATE  mission " + name + ": the probabilities say GO, but the model does not vouch for it\n";
+  } else if (report.accepted_unvouched) {
+    out += "GO (operator accepted unvouched approximations)  mission " + name + "\n";
+  } else {
+    out += std::string(report.status == CheckStatus::go ? "GO" : "NO-GO") + "  mission " + name + "\n";
+  }
   out += line("mission file", report.mission_path);
   out += line("robot models", report.models_path);
   out += line("content hash", report.mission_hash);
@@ -32,19 +38,38 @@ std::string format_check(const CheckReport& report) {
   out += line("P(every robot within Rmax = " + format_fixed(r.rmax_m, 2) + " m)", format_fixed(r.p_radius, 4));
   out += line("P(success) = P(both)", format_fixed(r.p_joint, 4) + (r.p_joint >= r.threshold ? "  >= " : "  < ") +
                                           "threshold " + format_fixed(r.threshold, 4));
+  if (r.p_joint_widened) {
+    out += line("P(success) widened", format_fixed(*r.p_joint_widened, 4) + " at Tmax - " + format_fixed(verifier::kWidenTime_s, 1) +
+                                          " s, Rmax - " + format_fixed(verifier::kWidenRadius_m, 2) + " m (decided on this)");
+  }
   for (const verifier::CriterionVerdict& c : r.criteria) {
     out += line("criterion " + c.name, format_fixed(c.probability, 4) + (c.holds ? "  holds" : "  FAILS") + " (needs " +
                                            format_fixed(c.required, 4) + ")");
   }
-  if (r.completion_sd_s > 0.0 || r.completion_mean_s > 0.0) {
+  if (r.branches > 0 && (r.completion_sd_s > 0.0 || r.completion_mean_s > 0.0)) {
     out += line("predicted completion", format_fixed(r.completion_mean_s, 1) + " s +- " + format_fixed(r.completion_sd_s, 1) + " s");
   }
   for (const verifier::RobotPrediction& robot : r.robots) {
+    if (!robot.finishes) {
+      out += line(robot.name + " predicted", "BLOCKED: never reaches a final state (below)");
+      continue;
+    }
     out += line(robot.name + " predicted", "done at " + format_fixed(robot.finish_mean_s, 1) + " s +- " +
                                                format_fixed(robot.finish_sd_s, 1) + ", ends " + format_fixed(robot.dist_mean_m, 2) +
                                                " m from its goal, P(within Rmax) " + format_fixed(robot.p_radius, 4));
   }
+  for (const verifier::BlockedRobot& b : r.blocked) {
+    out += line(b.name + " blocked", "P " + format_fixed(b.probability, 4) + " " + b.why + " in state '" + b.state_name +
+                                         "' near (" + format_fixed(b.x_m, 2) + ", " + format_fixed(b.y_m, 2) + ")" +
+                                         (b.where.empty() ? "" : " " + b.where));
+  }
   for (const std::string& failed : r.failed) out += "  failed: " + failed + "\n";
+  for (const verifier::Approximation& a : r.approximations) {
+    out += std::string("  ") + (a.vouched ? "approximation (vouched) " : "UNVOUCHED approximation ") +
+           verifier::to_string(a.kind) + ": " + a.robot_name + (a.state.empty() ? "" : " '" + a.state + "'") +
+           (a.where.empty() ? "" : " at " + a.where) + ": " + a.detail + "\n";
+  }
+  if (report.status == CheckStatus::cannot_evaluate) out += "  cannot evaluate: " + report.error + "\n";
   out += line("decision time", format_fixed(report.total_ms, 1) + " ms (verifier " + format_fixed(report.verify_ms, 1) + " ms; " +
                                    format_fixed(report.total_cpu_ms, 1) + " ms of CPU)");
   return out;
@@ -52,11 +77,14 @@ std::string format_check(const CheckReport& report) {
 
 std::string check_fields(const CheckReport& report) {
   std::string out = std::string("decision=") + to_string(report.status);
-  if (report.verified()) {
+  if (report.evaluated()) {
     const verifier::VerifyResult& r = report.result;
     out += " p_time=" + format_fixed(r.p_time, 4) + " p_radius=" + format_fixed(r.p_radius, 4) + " p_joint=" + format_fixed(r.p_joint, 4) +
            " threshold=" + format_fixed(r.threshold, 4) + " tmax_s=" + format_fixed(r.tmax_s, 1) + " rmax_m=" + format_fixed(r.rmax_m, 2) +
-           " hash=" + report.mission_hash;
+           " hash=" + report.mission_hash + " evaluable=" + (r.evaluable ? "true" : "false");
+    const std::string unvouched = verifier::unvouched_kinds(r.approximations);
+    if (!unvouched.empty()) out += " unvouched=" + unvouched;
+    if (report.accepted_unvouched) out += " accepted_unvouched=true";
   }
   out += " decision_ms=" + format_fixed(report.total_ms, 2) + " verify_ms=" + format_fixed(report.verify_ms, 2) +
          " decision_cpu_ms=" + format_fixed(report.total_cpu_ms, 2);

@@ -45,6 +45,7 @@ const char* to_string(CheckStatus status) {
     case CheckStatus::bad_input: return "bad-input";
     case CheckStatus::no_models: return "no-models";
     case CheckStatus::cannot_run: return "cannot-run";
+    case CheckStatus::cannot_evaluate: return "cannot-evaluate";
   }
   return "?";
 }
@@ -105,7 +106,22 @@ CheckReport pre_launch_check(const CheckRequest& request, const VerdictSource& s
     return fail(bad_input ? CheckStatus::bad_input : CheckStatus::cannot_run, verdict.error().message);
   }
   report.result = std::move(verdict.value());
-  report.status = report.result.go ? CheckStatus::go : CheckStatus::no_go;
+  verifier::locate_in_mission_file(report.result, *mission_bytes, request.mission_path);
+  switch (verifier::decision(report.result)) {
+    case verifier::Decision::go: report.status = CheckStatus::go; break;
+    case verifier::Decision::no_go: report.status = CheckStatus::no_go; break;
+    case verifier::Decision::cannot_evaluate:
+      // Not GO on a mission the model cannot vouch for, unless the operator
+      // says so (and that is logged and published).
+      report.accepted_unvouched = request.accept_unvouched;
+      report.status = request.accept_unvouched ? CheckStatus::go : CheckStatus::cannot_evaluate;
+      if (!request.accept_unvouched) {
+        report.error = "the model does not vouch for this mission (" +
+                       verifier::unvouched_kinds(report.result.approximations) +
+                       "): its P(success) cannot be trusted; accept it explicitly to launch";
+      }
+      break;
+  }
   report.total_ms = ms_since(start);
   report.total_cpu_ms = thread_cpu_ms() - start_cpu_ms;
   return report;
@@ -123,8 +139,14 @@ gate::GateVerdict make_verdict(const CheckReport& report, bool override_gate) {
   v.rmax_m = r.rmax_m;
   if (override_gate) {
     v.decision = gate::GateDecision::override_go;
-    v.detail = std::string("operator override; the verifier said ") + (r.go ? "GO" : "NO-GO");
+    const verifier::Decision said = verifier::decision(r);
+    v.detail = std::string("operator override; the verifier said ") +
+               (said == verifier::Decision::go ? "GO" : said == verifier::Decision::no_go ? "NO-GO" : "CANNOT-EVALUATE");
     if (!r.failed.empty()) v.detail += ": " + join(r.failed, "; ");
+  } else if (report.accepted_unvouched) {
+    v.decision = gate::GateDecision::override_go;
+    v.detail = "operator accepted unvouched approximations (" + verifier::unvouched_kinds(r.approximations) +
+               "); the verifier's probabilities say GO";
   } else {
     v.decision = r.go ? gate::GateDecision::go : gate::GateDecision::no_go;
     v.detail = join(r.failed, "; ");

@@ -89,6 +89,7 @@ Result<RunOutput> run_verify_and_validate(const RunRequest& r,
   out.verify_wall_s = seconds_since(v0);
   if (!verified) return verified.error();
   say("verified in " + format_fixed(out.verify_wall_s, 3) + " s: P(success) " + format_fixed(verified->p_joint, 4));
+  locate_from_file(*verified, r.mission_file);
   nlohmann::json vj = verify_json(*mission, *verified);
   vj["command"] = standalone(r, true);
   out.verification = Json::parse(vj.dump());  // into the ordered type the caller holds

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 
 namespace p3at::hal {
@@ -56,14 +57,42 @@ Result<TeamKey> parse_team_key(std::string_view text, std::string_view source_na
     auto& b = bytes[i / 2];
     b = static_cast<std::uint8_t>((b << 4) | v);
   }
+  if (sodium_is_zero(bytes.data(), bytes.size()) != 0) {
+    return make_error(Error::Code::invalid_argument,
+                      prefix + "the key is all zeros, not a secret (create one with `p3at_team_key FILE`)");
+  }
   TeamKey key(bytes);
   sodium_memzero(bytes.data(), bytes.size());
   return key;
 }
 
 Result<TeamKey> load_team_key(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // O_NONBLOCK: opening a FIFO must not wait for a writer; the checks below
+  // refuse anything but a regular file before a byte is read.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
   if (fd < 0) return errno_error(path, "cannot open", errno);
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    const int err = errno;
+    ::close(fd);
+    return errno_error(path, "cannot stat", err);
+  }
+  if (!S_ISREG(st.st_mode)) {
+    ::close(fd);
+    const char* kind = S_ISDIR(st.st_mode) ? "a directory" : S_ISFIFO(st.st_mode) ? "a FIFO" : S_ISSOCK(st.st_mode) ? "a socket"
+                       : (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) ? "a device" : "not a regular file";
+    return make_error(Error::Code::invalid_argument, "team key file '" + path + "': is " + std::string(kind) +
+                                                         ", not a regular file");
+  }
+  if ((st.st_mode & 0077) != 0) {
+    // As ssh insists for private keys: a key others can read is no secret.
+    ::close(fd);
+    char mode[8];
+    std::snprintf(mode, sizeof mode, "%04o", st.st_mode & 07777u);
+    return make_error(Error::Code::refused, "team key file '" + path + "': mode " + mode +
+                                                " lets others read or write it; it must be readable by its owner "
+                                                "only (chmod 600 '" + path + "')");
+  }
   std::string text(kMaxKeyFileBytes + 1, '\0');
   std::size_t used = 0;
   while (used < text.size()) {
@@ -118,14 +147,25 @@ std::string team_key_fingerprint(const TeamKey& key) {
 }
 
 Status write_team_key_file(const std::string& path, const TeamKey& key, bool overwrite) {
-  const int flags = O_WRONLY | O_CREAT | O_CLOEXEC | (overwrite ? O_TRUNC : O_EXCL);
+  // O_NONBLOCK and O_NOFOLLOW: --force on a FIFO must not wait for a reader,
+  // and a key is never written through a symbolic link; anything but a
+  // regular file is refused below before a byte is written.
+  const int flags = O_WRONLY | O_CREAT | O_CLOEXEC | O_NONBLOCK | O_NOFOLLOW | (overwrite ? O_TRUNC : O_EXCL);
   const int fd = ::open(path.c_str(), flags, 0600);
+  if (fd < 0 && errno == ENXIO) {  // a FIFO with no reader
+    return make_error(Error::Code::invalid_argument, "team key file '" + path + "': is a FIFO, not a regular file");
+  }
   if (fd < 0) {
     if (errno == EEXIST) {
       return make_error(Error::Code::refused,
                         "team key file '" + path + "': already exists (refusing to replace a team key)");
     }
     return errno_error(path, "cannot create", errno);
+  }
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    return make_error(Error::Code::invalid_argument, "team key file '" + path + "': not a regular file");
   }
   // O_CREAT's mode does not apply to an existing file, and the umask may differ.
   if (::fchmod(fd, 0600) != 0) {

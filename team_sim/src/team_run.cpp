@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <utility>
+#include <variant>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -45,6 +48,63 @@ class LogThresholdGuard {
   log::Level saved_;
   bool changed_;
 };
+
+/// Distance from (x, y) to the nearest wall of the world (infinity without walls).
+double nearest_wall_m(const sim::WorldConfig& world, double x, double y) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& w : world.walls) {
+    const double dx = w.b.x - w.a.x, dy = w.b.y - w.a.y;
+    const double len2 = dx * dx + dy * dy;
+    const double t = len2 > 0.0 ? std::clamp(((x - w.a.x) * dx + (y - w.a.y) * dy) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, std::hypot(x - (w.a.x + t * dx), y - (w.a.y + t * dy)));
+  }
+  return best;
+}
+
+std::string num(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+/// Why a robot still running at the timeout has not finished, without
+/// --verbose: waiting for a message (which, from whom), or not moving (where,
+/// how close to a wall: pinned), or still on its way.
+/// `brief` is the same without numbers, so that runs stuck alike group
+/// together in vipars validate's failure list.
+std::string why_not_finished(const mission::Mission& mission, std::size_t i, const std::string& state_name, double x,
+                             double y, double still_s, double wall_m, std::string& brief) {
+  const mission::RobotSpec& spec = mission.robots[i];
+  const auto state = spec.find_state(state_name);
+  std::string where = "in state '" + state_name + "' at (" + num(x, 2) + ", " + num(y, 2) + ")";
+  brief = spec.name + " in '" + state_name + "'";
+  if (!state) return where;
+  std::string waits;
+  bool only_messages = !spec.states[*state].outgoing.empty();
+  for (const std::size_t t : spec.states[*state].outgoing) {
+    const auto* n = std::get_if<mission::NotifiedParams>(&spec.transitions[t].trigger);
+    if (n == nullptr) {
+      only_messages = false;
+      continue;
+    }
+    std::string from;
+    if (const auto m = mission.find_message(n->message)) from = " from " + mission.robots[mission.messages[*m].from].name;
+    waits += (waits.empty() ? "" : " or ") + ("'" + n->message + "'" + from);
+  }
+  const bool moving = spec.states[*state].kind() == mission::BehaviorKind::go_to_guarded ||
+                      spec.states[*state].kind() == mission::BehaviorKind::spin;
+  if (only_messages && !moving) {
+    brief += " waiting for " + waits;
+    return where + ", waiting for " + waits + ", never received";
+  }
+  if (moving && still_s >= 10.0) {
+    brief += " not moving (pinned)";
+    return where + ", has not moved for " + num(still_s, 0) + " s, " + num(wall_m, 2) +
+           " m from the nearest wall (pinned" + (waits.empty() ? "" : "; or waiting for " + waits) + ")";
+  }
+  brief += " still moving";
+  return where + (waits.empty() ? ", still on its way" : ", still on its way (or waiting for " + waits + ")");
+}
 
 }  // namespace
 
@@ -104,10 +164,21 @@ RunResult TeamScenario::run(std::uint64_t run_index, std::uint64_t seed, const R
   const auto timeout_us = static_cast<std::int64_t>(options.timeout_s * 1e6);
   const auto settle_us = static_cast<std::int64_t>(options.settle_s * 1e6);
   std::int64_t all_ended_us = -1;
+  // Where each robot last moved (10 cm or more), and when: for a timeout's reason.
+  std::vector<std::pair<double, double>> last_moved_xy(n);
+  std::vector<std::int64_t> last_moved_us(n, 0);
+  for (std::size_t i = 0; i < n; ++i) last_moved_xy[i] = {world.robot(i).true_pose().x_m, world.robot(i).true_pose().y_m};
   while (world.time_us() < timeout_us) {
     for (auto& d : drives) (void)d->wait_for_update(150);  // the first steps the world
     for (auto& e : executives) e->cycle();
     ++result.cycles;
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto& p = world.robot(i).true_pose();
+      if (std::hypot(p.x_m - last_moved_xy[i].first, p.y_m - last_moved_xy[i].second) >= 0.1) {
+        last_moved_xy[i] = {p.x_m, p.y_m};
+        last_moved_us[i] = world.time_us();
+      }
+    }
     for (std::size_t i = 0; i < n; ++i) {
       for (std::size_t j = i + 1; j < n; ++j) {
         const auto& a = world.robot(i).true_pose();
@@ -126,6 +197,7 @@ RunResult TeamScenario::run(std::uint64_t run_index, std::uint64_t seed, const R
   if (n < 2) result.closest_approach_m = 0.0;
 
   std::string first_abort;
+  std::string timed_out;  // every robot still running: who, in which state, where, why
   bool all_finished = true;
   for (std::size_t i = 0; i < n; ++i) {
     const auto& e = *executives[i];
@@ -144,6 +216,13 @@ RunResult TeamScenario::run(std::uint64_t run_index, std::uint64_t seed, const R
     r.cycle_p50_us = e.stats().p50_us();
     r.cycle_p99_us = e.stats().p99_us();
     if (e.outcome().phase != exec::Phase::finished) all_finished = false;
+    if (e.outcome().phase == exec::Phase::running) {
+      std::string brief;
+      r.reason = why_not_finished(mission_, i, e.state_name(), r.true_x_m, r.true_y_m,
+                                  static_cast<double>(world.time_us() - last_moved_us[i]) / 1e6,
+                                  nearest_wall_m(world_, r.true_x_m, r.true_y_m), brief);
+      timed_out += (timed_out.empty() ? "" : "; ") + brief;
+    }
     if (e.outcome().phase == exec::Phase::aborted && first_abort.empty()) first_abort = r.name + ": " + r.reason;
     result.time_s = std::max(result.time_s, r.end_time_s);
     result.robots.push_back(std::move(r));
@@ -153,7 +232,7 @@ RunResult TeamScenario::run(std::uint64_t run_index, std::uint64_t seed, const R
   } else if (!first_abort.empty()) {
     result.outcome = "aborted (" + first_abort + ")";
   } else {
-    result.outcome = "timeout";
+    result.outcome = "timeout (" + timed_out + ")";
     result.time_s = options.timeout_s;
   }
   return result;

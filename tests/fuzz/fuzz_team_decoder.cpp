@@ -5,8 +5,9 @@
 //   - a notification decoded with a valid tag re-encodes to exactly the input
 //     (the encoding is canonical, so there is one authentic form per message);
 //   - decoding what we encode gives back the same fields with a valid tag.
-// Seeds: tests/fuzz/corpus/team (valid messages under the key below; the
-// verdict seeds are encode_verdict() of a GO and a NO-GO from alpha).
+// Seeds: tests/fuzz/corpus/team (valid messages under the key below, with the
+// launch session fields: a notification of another session, and verdicts GO,
+// NO-GO and committed from alpha that echo bravo's nonce).
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -31,7 +32,7 @@ void check(bool ok) {
 
 std::uint64_t total(const TeamLinkStats& s) {
   return s.accepted + s.verdicts_accepted + s.telemetry_accepted + s.rejected_unknown_sender + s.rejected_bad_tag +
-         s.rejected_replay + s.rejected_other_mission + s.malformed;
+         s.rejected_replay + s.rejected_other_mission + s.rejected_other_session + s.malformed;
 }
 
 }  // namespace
@@ -83,7 +84,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         check(round.ok() && round->tag_ok && round->wire.seq == d->wire.seq &&
               round->wire.verdict.robot == d->wire.verdict.robot &&
               round->wire.verdict.mission_hash == d->wire.verdict.mission_hash &&
-              round->wire.verdict.decision == d->wire.verdict.decision);
+              round->wire.verdict.decision == d->wire.verdict.decision &&
+              round->wire.verdict.nonce == d->wire.verdict.nonce &&
+              round->wire.verdict.session == d->wire.verdict.session &&
+              round->wire.verdict.heard == d->wire.verdict.heard);
       }
       break;
     }

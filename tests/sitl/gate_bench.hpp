@@ -17,6 +17,7 @@ namespace p3at::test {
 
 inline constexpr int kExitAborted = 3;
 inline constexpr int kExitGateNoGo = 4;
+inline constexpr int kExitGateCannotRun = 7;
 inline constexpr int kExitGateMismatch = 5;
 inline constexpr int kExitGateSilent = 6;
 inline constexpr int kExitGateInDoubt = 8;

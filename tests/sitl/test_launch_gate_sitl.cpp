@@ -5,12 +5,16 @@
 // simulator's own count of motion commands received — a NO-GO (one robot's
 // verdict), a mismatched mission hash, a silent teammate, and a forged GO from
 // a process without the team key (rejected and counted). And the operator's
-// override, logged and published as OVERRIDE.
+// override, logged and published as OVERRIDE. And a mission the model does
+// not vouch for (max_speed_mps above the P3-AT's top speed): cannot evaluate,
+// exit 7, no robot moves.
 #include <doctest/doctest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <chrono>
 #include <string>
+#include <thread>
 
 #include "child_process.hpp"
 #include "p3at/launch_gate/mission_hash.hpp"
@@ -18,6 +22,7 @@
 
 using namespace p3at;
 using test::Bench;
+using test::kExitGateCannotRun;
 using test::kExitGateMismatch;
 using test::kExitGateNoGo;
 using test::kExitGateSilent;
@@ -162,4 +167,31 @@ TEST_CASE("operator override: both robots told --override-gate launch a NO-GO mi
   CHECK(contains(log1, "event=verdict-heard robot=robot2 decision=OVERRIDE"));
   CHECK(contains(log1, "every robot agrees: robot1:OVERRIDE,robot2:OVERRIDE"));
   CHECK(contains(log2, "event=finished robot=robot2 outcome=finished"));
+}
+
+TEST_CASE("cannot evaluate: a mission faster than the robots' top speed; both refuse with exit 7, neither moves") {
+  Bench bench;
+  const std::string mission = std::string(P3AT_SOURCE_DIR) + "/tests/sitl/data/relay_too_fast.yaml";
+  test::ChildProcess robot1(bench.args("robot1", {}, mission), test::scratch_path("robot1.log"));
+  test::ChildProcess robot2(bench.args("robot2", {}, mission), test::scratch_path("robot2.log"));
+  CHECK(robot1.wait_exit(30.0) == kExitGateCannotRun);
+  CHECK(robot2.wait_exit(30.0) == kExitGateCannotRun);
+  const std::string log1 = robot1.log();
+  const std::string log2 = robot2.log();
+  INFO("robot1 log:\n" << log1);
+  INFO("robot2 log:\n" << log2);
+  // The probabilities say GO; the refusal says why it cannot be trusted, where.
+  CHECK(contains(log1, "CANNOT EVALUATE  mission relay_too_fast"));
+  CHECK(contains(log1, "UNVOUCHED approximation speed-above-top: robot1 at " + mission + ":"));
+  CHECK(contains(log1, "event=gate-refused robot=robot1 why=cannot-evaluate"));
+  CHECK(contains(log2, "event=gate-refused robot=robot2 why=cannot-evaluate"));
+  CHECK(contains(log1, "unvouched=speed-above-top"));
+  // Both refused before connecting, at once: give the simulator's truth CSV
+  // its first rows (it records even unconnected robots) before reading it.
+  for (int i = 0; i < 50 && (test::truth_rows(bench.sim.truth_path, "robot1").empty() ||
+                             test::truth_rows(bench.sim.truth_path, "robot2").empty());
+       ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  bench.check_no_motion();
 }

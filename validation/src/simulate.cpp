@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -92,6 +93,12 @@ int run_simulate(const SimulateOptions& o) {
                 scenario->mission().name.c_str(), s.runs, s.successes,
                 s.runs ? 100.0 * static_cast<double>(s.successes) / static_cast<double>(s.runs) : 0.0, wall_s,
                 static_cast<double>(s.runs) / wall_s);
+    // Why runs failed (a timeout says who, in which state, and why), grouped.
+    std::map<std::string, std::size_t> failures;
+    for (const auto& r : results) {
+      if (!r.success()) ++failures[r.outcome];
+    }
+    for (const auto& [outcome, count] : failures) std::printf("%zu run(s): %s\n", count, outcome.c_str());
     if (s.successes > 0) {
       std::printf("completion time: mean %.1f s, sd %.1f s, min %.1f s, max %.1f s\n", s.time_mean_s, s.time_sd_s,
                   s.time_min_s, s.time_max_s);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 
 #include "p3at/common/number_format.hpp"
 
@@ -21,12 +23,59 @@ std::vector<std::size_t> shown(std::size_t n, std::size_t max) {
   return idx;
 }
 
+std::string why_blocked(const std::string& why) {
+  if (why == "stuck") return "stuck on its path (no quadrature direction reaches the state's trigger)";
+  if (why == "waiting") return "waiting for a message nobody will send";
+  if (why == "loop") return "still looping after the event budget";
+  return why;
+}
+
 }  // namespace
+
+void locate_from_file(verifier::VerifyResult& result, const std::string& mission_file) {
+  std::ifstream in(mission_file, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  verifier::locate_in_mission_file(result, text, mission_file);
+}
+
+nlohmann::json approximations_json(const std::vector<verifier::Approximation>& approximations) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const verifier::Approximation& a : approximations) {
+    nlohmann::json e{{"kind", verifier::to_string(a.kind)}, {"robot", a.robot_name}, {"state", a.state},
+                     {"where", a.where}, {"detail", a.detail}, {"vouched", a.vouched}};
+    if (a.measured_error) {
+      e["measured_error"] = {{"time", a.measured_error->time}, {"radius", a.measured_error->radius},
+                             {"joint", a.measured_error->joint}};
+    } else {
+      e["measured_error"] = nullptr;
+    }
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+std::string approximations_text(const std::vector<verifier::Approximation>& approximations) {
+  if (approximations.empty()) return "";
+  std::string s = "  approximations of the model on this mission (docs/verifier.md):\n";
+  for (const verifier::Approximation& a : approximations) {
+    std::string measured = "never measured";
+    if (a.measured_error) {
+      measured = "measured error " + format_fixed(a.measured_error->time, 3) + " / " + format_fixed(a.measured_error->radius, 3) +
+                 " / " + format_fixed(a.measured_error->joint, 3);
+    }
+    s += std::string("    ") + (a.vouched ? "vouched  " : "UNVOUCHED") + " " + verifier::to_string(a.kind) + " " +
+         a.robot_name + (a.state.empty() ? "" : " '" + a.state + "'") + (a.where.empty() ? "" : " at " + a.where) +
+         " (" + measured + ")\n      " + a.detail + "\n";
+  }
+  return s;
+}
 
 nlohmann::json verify_json(const mission::Mission& mission, const verifier::VerifyResult& r) {
   nlohmann::json j;
   j["mission"] = mission.name;
-  j["decision"] = r.go ? "go" : "no-go";
+  j["decision"] = verifier::to_string(verifier::decision(r));
+  j["evaluable"] = r.evaluable;
+  j["p_joint_widened"] = r.p_joint_widened ? nlohmann::json(*r.p_joint_widened) : nlohmann::json(nullptr);
   j["tmax_s"] = r.tmax_s;
   j["rmax_m"] = r.rmax_m;
   j["threshold"] = r.threshold;
@@ -39,7 +88,8 @@ nlohmann::json verify_json(const mission::Mission& mission, const verifier::Veri
   for (const verifier::RobotPrediction& p : r.robots) {
     robots.push_back({{"name", p.name}, {"p_radius", p.p_radius}, {"finish_mean_s", p.finish_mean_s},
                       {"finish_sd_s", p.finish_sd_s}, {"final_x_m", p.final_x_m}, {"final_y_m", p.final_y_m},
-                      {"final_sd_m", p.final_sd_m}, {"dist_mean_m", p.dist_mean_m}});
+                      {"final_sd_m", p.final_sd_m}, {"dist_mean_m", p.dist_mean_m}, {"p_blocked", p.p_blocked},
+                      {"finishes", p.finishes}});
   }
   j["robots"] = robots;
   nlohmann::json criteria = nlohmann::json::array();
@@ -51,6 +101,13 @@ nlohmann::json verify_json(const mission::Mission& mission, const verifier::Veri
   j["failed"] = r.failed;
   j["pruned_mass"] = r.pruned_mass;
   j["blocked_mass"] = r.blocked_mass;
+  nlohmann::json blocked = nlohmann::json::array();
+  for (const verifier::BlockedRobot& b : r.blocked) {
+    blocked.push_back({{"robot", b.name}, {"state", b.state_name}, {"where", b.where}, {"why", b.why},
+                       {"x_m", b.x_m}, {"y_m", b.y_m}, {"probability", b.probability}});
+  }
+  j["blocked"] = blocked;
+  j["approximations"] = approximations_json(r.approximations);
   j["loop_cutoff_mass"] = r.loop_cutoff_mass;
   j["branches"] = r.branches;
   j["subsystems"] = r.subsystems;
@@ -77,11 +134,29 @@ std::string verify_text(const mission::Mission& mission, const verifier::VerifyR
   std::string s;
   s += "mission " + mission.name + ": Tmax " + format_fixed(r.tmax_s, 1) + " s, Rmax " + format_fixed(r.rmax_m, 2) +
        " m, threshold " + format_fixed(r.threshold, 3) + "\n";
-  s += "  P(t <= Tmax)                 " + format_fixed(r.p_time, 4) + "   (completion " +
-       format_fixed(r.completion_mean_s, 1) + " ± " + format_fixed(r.completion_sd_s, 1) + " s)\n";
+  s += "  P(t <= Tmax)                 " + format_fixed(r.p_time, 4) +
+       (r.branches > 0 ? "   (completion " + format_fixed(r.completion_mean_s, 1) + " ± " + format_fixed(r.completion_sd_s, 1) + " s)"
+                       : "   (no branch completes: the mission never finishes)") +
+       "\n";
   s += "  P(every r_i <= Rmax)         " + format_fixed(r.p_radius, 4) + "\n";
   s += "  P(t <= Tmax and r_i <= Rmax) " + format_fixed(r.p_joint, 4) + "\n";
-  for (const verifier::RobotPrediction& p : r.robots) {
+  if (r.p_joint_widened) {
+    s += "  decided at Tmax - " + format_fixed(verifier::kWidenTime_s, 1) + " s, Rmax - " + format_fixed(verifier::kWidenRadius_m, 2) +
+         " m (an approximation that shifts the curves): P " + format_fixed(*r.p_joint_widened, 4) + "\n";
+  }
+  for (std::size_t i = 0; i < r.robots.size(); ++i) {
+    const verifier::RobotPrediction& p = r.robots[i];
+    if (!p.finishes) {
+      // No branch has it finish: there is no finishing time or place to print.
+      s += "  " + p.name + ": BLOCKED, never reaches a final state";
+      for (const verifier::BlockedRobot& b : r.blocked) {
+        if (b.robot != i) continue;
+        s += "; P " + format_fixed(b.probability, 3) + " " + why_blocked(b.why) + " in state '" + b.state_name + "'" +
+             (b.where.empty() ? "" : " (" + b.where + ")") + " near (" + format_fixed(b.x_m, 2) + ", " + format_fixed(b.y_m, 2) + ")";
+      }
+      s += "\n";
+      continue;
+    }
     s += "  " + p.name + ": done at " + format_fixed(p.finish_mean_s, 1) + " ± " + format_fixed(p.finish_sd_s, 1) +
          " s, ends near (" + format_fixed(p.final_x_m, 2) + ", " + format_fixed(p.final_y_m, 2) + ") ± " +
          format_fixed(p.final_sd_m, 2) + " m, " + format_fixed(p.dist_mean_m, 2) + " m from its goal, P(r <= Rmax) " +
@@ -95,6 +170,13 @@ std::string verify_text(const mission::Mission& mission, const verifier::VerifyR
     s += "  probability mass pruned " + format_scientific(r.pruned_mass, 2) + ", blocked (never finishes) " +
          format_scientific(r.blocked_mass, 2) + "\n";
   }
+  for (const verifier::BlockedRobot& b : r.blocked) {
+    if (b.robot < r.robots.size() && !r.robots[b.robot].finishes) continue;  // said above
+    s += "  blocked with P " + format_scientific(b.probability, 2) + ": " + b.name + " " + why_blocked(b.why) + " in state '" +
+         b.state_name + "'" + (b.where.empty() ? "" : " (" + b.where + ")") + " near (" + format_fixed(b.x_m, 2) + ", " +
+         format_fixed(b.y_m, 2) + ")\n";
+  }
+  s += approximations_text(r.approximations);
   if (r.loop_cutoff_mass > 0.0) {
     s += "  probability mass of loop laps beyond the budget " + format_scientific(r.loop_cutoff_mass, 2) +
          " (counted as failure)\n";
@@ -114,7 +196,14 @@ std::string verify_text(const mission::Mission& mission, const verifier::VerifyR
       s += "\n";
     }
   }
-  s += std::string(r.go ? "decision: GO" : "decision: NO-GO") + "\n";
+  switch (verifier::decision(r)) {
+    case verifier::Decision::go: s += "decision: GO\n"; break;
+    case verifier::Decision::no_go: s += "decision: NO-GO\n"; break;
+    case verifier::Decision::cannot_evaluate:
+      s += "decision: CANNOT EVALUATE: the probabilities say GO, but the model does not vouch for this mission (" +
+           verifier::unvouched_kinds(r.approximations) + "); the gate refuses it unless the operator accepts\n";
+      break;
+  }
   for (const std::string& f : r.failed) s += "  failed: " + f + "\n";
   return s;
 }

@@ -42,6 +42,7 @@
 #include "p3at/launch_gate/launch_session.hpp"
 #include "p3at/launch_gate/pre_launch_check.hpp"
 #include "p3at/launch_gate/reverifier.hpp"
+#include "p3at/launch_gate/teammate_watch.hpp"
 #include "p3at/common/number_format.hpp"
 #include "launch_setup.hpp"
 
@@ -68,12 +69,13 @@ void print_summary(const p3at::exec::RobotExecutive& exec, double p_gate, const 
   if (!o.reason.empty()) reason = " reason=\"" + o.reason + "\"";
   const double p_now = monitor.latest_p().value_or(p_gate);
   std::printf("event=finished robot=%s outcome=%s t_s=%.3f x_m=%.3f y_m=%.3f state=%s cycles=%llu overruns=%llu "
-              "missed=%llu p50_us=%.1f p99_us=%.1f p_gate=%.4f p_now=%.4f reverifications=%llu "
-              "reverify_max_ms=%.2f%s\n",
+              "missed=%llu stalls=%llu missed_cycles=%llu longest_stall_ms=%lld p50_us=%.1f p99_us=%.1f "
+              "p_gate=%.4f p_now=%.4f reverifications=%llu reverify_max_ms=%.2f%s\n",
               exec.robot().name.c_str(), p3at::exec::to_string(o.phase), exec.elapsed_s(), exec.pose().x_m,
               exec.pose().y_m, exec.state_name().c_str(), static_cast<unsigned long long>(s.cycles()),
               static_cast<unsigned long long>(s.overruns()), static_cast<unsigned long long>(s.missed_updates()),
-              s.p50_us(), s.p99_us(), p_gate, p_now, static_cast<unsigned long long>(monitor.answers()),
+              static_cast<unsigned long long>(s.stalls()), static_cast<unsigned long long>(s.missed_cycles()),
+              static_cast<long long>(s.longest_stall_ms()), s.p50_us(), s.p99_us(), p_gate, p_now, static_cast<unsigned long long>(monitor.answers()),
               monitor.max_compute_ms(), reason.c_str());
   std::fflush(stdout);
 }
@@ -115,7 +117,9 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
   if (!key) return bad_input(key.error().message);
 
   // ---- the pre-launch check, before anything else: load, hash, verify
-  const gate::CheckRequest& request = opt.check;
+  gate::CheckRequest request = opt.check;
+  // --override-gate overrides every verifier decision, cannot-evaluate included.
+  request.accept_unvouched = opt.check.accept_unvouched || opt.override_gate;
   const gate::CheckReport report = gate::pre_launch_check(request, gate::verifier_source());
   p3at::log::info(kLog, "event=gate-check robot=" + opt.robot + " " + gate::check_fields(report));
   if (report.status == gate::CheckStatus::bad_input) return bad_input(report.error);
@@ -145,6 +149,10 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
   p3at::hal::SteadyClock clock;
   auto team_link = open_team_link(mission, *robot_index, lcm_url, *key);
   if (!team_link) {
+    // A malformed URL is bad input (2); a well-formed one that cannot be opened is not.
+    if (team_link.error().code == p3at::Error::Code::invalid_argument) {
+      return bad_input("--lcm: " + team_link.error().message);
+    }
     std::fprintf(stderr, "mission_exec: cannot open the team link: %s\n", team_link.error().message.c_str());
     return kExitAborted;
   }
@@ -156,6 +164,9 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
   client_config.serial_preamble = parsed_hal->scheme == "serial";
   client_config.auto_reconnect = false;  // a lost link aborts the mission; never reconnect mid-mission
   client_config.log_name = "bridge";
+  // The executive asks for its motion every cycle: after a stall, the bridge
+  // must not keep repeating a stale one from the backlog of SIPs (executive.md).
+  client_config.motion_stale_sips = 10;
   p3at::bridge::ArcosClient robot([hal_url] { return p3at::hal::open_byte_stream(hal_url); }, clock, client_config);
 
   // ---- optional CAN accessories: the safety node can stop the robot within one
@@ -202,8 +213,14 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
   if (arm_signals) arm_signals();
   if (opt.override_gate) {
     p3at::log::warn(kLog, "event=gate-override robot=" + spec.name + " verifier_decision=" +
-                              (report.result.go ? "GO" : "NO-GO") + " p_joint=" + format_fixed(own.p_joint, 4) +
-                              " threshold=" + format_fixed(own.threshold, 4) + " operator=--override-gate");
+                              (report.result.go ? (report.result.evaluable ? "GO" : "CANNOT-EVALUATE") : "NO-GO") +
+                              " p_joint=" + format_fixed(own.p_joint, 4) + " threshold=" + format_fixed(own.threshold, 4) +
+                              " operator=--override-gate");
+  } else if (report.accepted_unvouched) {
+    p3at::log::warn(kLog, "event=gate-accept-unvouched robot=" + spec.name + " unvouched=" +
+                              p3at::verifier::unvouched_kinds(report.result.approximations) +
+                              " p_joint=" + format_fixed(own.p_joint, 4) + " threshold=" + format_fixed(own.threshold, 4) +
+                              " operator=--accept-unvouched");
   }
 
   // A robot whose own verdict is NO-GO never even connects: it only tells the team.
@@ -212,6 +229,7 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
     p3at::log::info(kLog, "event=connecting robot=" + spec.name + " hal=" + hal_url + " lcm=" + lcm_url +
                               " mission=" + mission.name + " seed=" + std::to_string(opt.seed));
     if (const auto st = robot.connect(); !st) {
+      if (st.error().code == p3at::Error::Code::invalid_argument) return bad_input("--hal: " + st.error().message);
       exec->abort("cannot connect to " + hal_url + ": " + st.error().message);
       print_summary(*exec, own.p_joint, monitor);
       return kExitAborted;
@@ -276,12 +294,48 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
   p3at::exec::RealtimeOptions loop_options;
   loop_options.linger_ms = static_cast<std::int64_t>(opt.linger_s * 1000.0);
   loop_options.interrupt_reason = "interrupted by signal";
+  loop_options.stall_abort_ms = opt.stall_abort_ms;
+  loop_options.resume_after_stall = opt.resume_after_stall;
+  // Teammates' liveness: every message of the session is a heartbeat.
+  std::vector<std::string> teammates;
+  for (const std::string& name : roster) {
+    if (name != spec.name) teammates.push_back(name);
+  }
+  gate::TeammateWatch watch(teammates, static_cast<std::int64_t>(opt.teammate_silence_s * 1e6));
+  watch.start(clock.now_us());
+  const bool stop_on_fault = mission.criteria.abort_action == p3at::mission::AbortAction::stop_and_notify;
+  const double overtime_at_s = mission.criteria.tmax_s + opt.overtime_s;
+  bool overtime_said = false;
+  const auto request_abort = [&](const std::string& reason) {
+    if (g_stop.load()) return;
+    loop_options.interrupt_reason = reason;
+    g_stop.store(true);
+  };
   // Below the abort threshold with stop_and_notify, the monitor asks for the
   // abort: the loop then aborts with that reason (its status tells the team).
   link.after_poll = [&] {
-    if (auto reason = monitor.on_poll()) {
-      loop_options.interrupt_reason = *reason;
-      g_stop.store(true);
+    if (auto reason = monitor.on_poll()) request_abort(*reason);
+    for (const gate::SilentTeammate& t : watch.check(clock.now_us(), inner_link)) {
+      const std::string what = "teammate " + t.robot + " silent for " + format_fixed(t.silent_s, 1) + " s (limit " +
+                               format_fixed(opt.teammate_silence_s, 1) + " s)";
+      p3at::log::warn(kLog, "event=teammate-silent robot=" + spec.name + " teammate=" + t.robot + " silent_s=" +
+                                format_fixed(t.silent_s, 1) + " action=" +
+                                (stop_on_fault ? "stop_and_notify" : "continue_and_warn"));
+      if (stop_on_fault) {
+        request_abort(what);
+      } else {
+        link.set_note("warning: " + what + "; continuing");
+      }
+    }
+    // Nobody waits for ever: past Tmax + the margin, say so and stop.
+    if (opt.overtime_s > 0 && !overtime_said && exec->running() && exec->elapsed_s() > overtime_at_s) {
+      overtime_said = true;
+      const std::string what = "overtime: still running at t_s=" + format_fixed(exec->elapsed_s(), 1) +
+                               ", past Tmax " + format_fixed(mission.criteria.tmax_s, 1) + " s + " +
+                               format_fixed(opt.overtime_s, 1) + " s";
+      p3at::log::warn(kLog, "event=overtime robot=" + spec.name + " t_s=" + format_fixed(exec->elapsed_s(), 1) +
+                                " tmax_s=" + format_fixed(mission.criteria.tmax_s, 1));
+      request_abort(what);
     }
   };
   const p3at::exec::Outcome outcome = p3at::exec::run_realtime(*exec, base, g_stop, loop_options);

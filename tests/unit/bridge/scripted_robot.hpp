@@ -33,6 +33,8 @@ class ScriptedRobot {
   bool still_open_at_start = false;  // streams SIPs before any SYNC, like a robot left open
   int syncs_to_ignore = 0;           // drop this many SYNC0s before answering
   bool silent = false;               // never answers anything
+  bool garbage_replies = false;      // answers every command with text, not ARCOS packets (wrong device)
+  bool corrupt_replies = false;      // answers SYNCs with packets whose checksum is wrong (noisy line)
   bool sips_paused = false;          // opened, but SIPs stop (link loss)
   std::uint16_t start_x = 0x7F00;    // near the 15-bit wrap
   std::uint16_t start_y = 100;
@@ -124,6 +126,18 @@ class ScriptedRobot {
     const auto cmd = arcos::decode_command(p);
     received.push_back({clock_.now_us(), p.id, cmd.value, cmd.kind == arcos::DecodedCommand::ArgKind::integer});
     if (silent) return;
+    if (garbage_replies) {
+      static constexpr std::uint8_t kText[] = {'A', 'T', 'Z', '\r', '\n', 'O', 'K', '\r', '\n'};
+      (void)stream_->write_all(std::span<const std::uint8_t>(kText, sizeof kText));
+      return;
+    }
+    if (corrupt_replies) {
+      const arcos::Frame frame = arcos::encode_frame(p.id, {});
+      std::vector<std::uint8_t> bytes(frame.span().begin(), frame.span().end());
+      bytes.back() ^= 0x55;
+      (void)stream_->write_all(bytes);
+      return;
+    }
     if (!opened) {
       if (p.id == arcos::kSync0 && syncs_to_ignore > 0) {
         --syncs_to_ignore;

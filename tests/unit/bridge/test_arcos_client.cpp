@@ -117,11 +117,27 @@ TEST_CASE("no robot responding: a timeout error after the handshake limit, not a
   REQUIRE_FALSE(st.ok());
   CHECK(st.error().code == Error::Code::timeout);
   CHECK(st.error().message.find("no robot responding") != std::string::npos);
+  CHECK(st.error().message.find("nothing came back") != std::string::npos);
   const double waited_s = static_cast<double>(rig.clock.now_us() - start) / 1e6;
   CHECK(waited_s >= 5.9);
   CHECK(waited_s <= 7.5);
   CHECK(rig.client->state().link == hal::LinkState::disconnected);
   CHECK(rig.client->stats().handshake_failures == 1);
+}
+
+TEST_CASE("a failed handshake says what came back: garbage, or packets with bad checksums") {
+  Rig garbage;
+  garbage.robot.garbage_replies = true;
+  auto st = garbage.client->connect();
+  REQUIRE_FALSE(st.ok());
+  CHECK(st.error().message.find("garbage, no ARCOS packet") != std::string::npos);
+  CHECK(st.error().message.find("nothing came back") == std::string::npos);
+
+  Rig noisy;
+  noisy.robot.corrupt_replies = true;
+  st = noisy.client->connect();
+  REQUIRE_FALSE(st.ok());
+  CHECK(st.error().message.find("packets with bad checksums") != std::string::npos);
 }
 
 TEST_CASE("refused connection is an error value naming the robot") {
@@ -212,6 +228,29 @@ TEST_CASE("keep-alive repeats the velocity in force") {
     vel_repeats += rig.robot.received[i].number == num(Command::vel) && rig.robot.received[i].value == 200;
   }
   CHECK(vel_repeats >= 3);
+}
+
+TEST_CASE("motion_stale_sips: a velocity nobody asks for again is stopped once, not repeated; asking again resumes") {
+  bridge::ClientConfig config;
+  config.motion_stale_sips = 10;
+  Rig rig(config);
+  REQUIRE(rig.client->connect().ok());
+  REQUIRE(rig.client->set_velocity(0.2, 0.0).ok());
+  const std::size_t first = rig.robot.received.size();
+  rig.run_for(2.0);  // 2 s of SIPs, and no set_velocity(): a stalled caller
+  int vel_repeats = 0, stops = 0;
+  for (std::size_t i = first; i < rig.robot.received.size(); ++i) {
+    vel_repeats += rig.robot.received[i].number == num(Command::vel) && rig.robot.received[i].value == 200;
+    stops += rig.robot.received[i].number == num(Command::stop);
+  }
+  CHECK(vel_repeats <= 1);  // at most the keep-alive before the 10th SIP
+  CHECK(stops == 1);
+  CHECK(rig.client->stats().stale_motion_stops == 1);
+  // The caller is back: its request goes out at once.
+  const std::size_t before = rig.robot.received.size();
+  REQUIRE(rig.client->set_velocity(0.2, 0.0).ok());
+  REQUIRE(rig.robot.received.size() > before);
+  CHECK(rig.robot.received[before].number == num(Command::vel));
 }
 
 TEST_CASE("link loss: no SIP for 1 s refuses motion; SIPs returning restore it") {

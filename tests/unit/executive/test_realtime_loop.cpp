@@ -4,6 +4,8 @@
 #include <doctest/doctest.h>
 
 #include <atomic>
+#include <chrono>
+#include <thread>
 #include <functional>
 
 #include "fake_clock.hpp"
@@ -104,6 +106,49 @@ TEST_CASE("run_realtime: a missing update counts as missed and the cycle runs an
   CHECK(rig.inner.stop_calls >= 1);
   CHECK(rig.inner.trans_cmd_mps == 0.0);
   CHECK(rig.inner.rot_cmd_radps == 0.0);
+}
+
+TEST_CASE("run_realtime: a stall (this process not running) is counted; past stall_abort_ms it aborts, or resumes") {
+  // The hook makes update 5 arrive 300 ms of real wall time late (the process
+  // was not running); wait_for_update(0), the drain, finds nothing queued.
+  const auto stall_at_5 = [](Rig& rig, int stop_at) {
+    return [&rig, stop_at](int call, int timeout_ms) -> std::optional<p3at::Result<bool>> {
+      if (timeout_ms == 0) return p3at::Result<bool>(false);
+      if (call == 5) std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      if (call == stop_at) rig.stop = true;
+      return std::nullopt;
+    };
+  };
+  SUBCASE("shorter than stall_abort_ms: counted and logged, the mission goes on") {
+    Rig rig;
+    rig.drive.hook = stall_at_5(rig, 12);
+    p3at::exec::RealtimeOptions options;
+    const auto outcome = p3at::exec::run_realtime(rig.exec, rig.drive, rig.stop, options);
+    CHECK(rig.exec.stats().stalls() == 1);
+    CHECK(rig.exec.stats().missed_cycles() >= 2);  // 300 ms of wall time: at least 2 periods not run
+    CHECK(rig.exec.stats().longest_stall_ms() >= 300);
+    CHECK(outcome.reason == "interrupted");       // ended by the stop flag, not by the stall
+  }
+  SUBCASE("longer than stall_abort_ms: aborted, saying why") {
+    Rig rig;
+    rig.drive.hook = stall_at_5(rig, 50);
+    p3at::exec::RealtimeOptions options;
+    options.stall_abort_ms = 200;
+    const auto outcome = p3at::exec::run_realtime(rig.exec, rig.drive, rig.stop, options);
+    CHECK(outcome.phase == Phase::aborted);
+    CHECK(outcome.reason.find("longer than the firmware watchdog (200 ms)") != std::string::npos);
+    CHECK(rig.exec.stats().cycles() == 5);
+  }
+  SUBCASE("longer, with resume_after_stall: it goes on") {
+    Rig rig;
+    rig.drive.hook = stall_at_5(rig, 12);
+    p3at::exec::RealtimeOptions options;
+    options.stall_abort_ms = 200;
+    options.resume_after_stall = true;
+    const auto outcome = p3at::exec::run_realtime(rig.exec, rig.drive, rig.stop, options);
+    CHECK(outcome.reason == "interrupted");
+    CHECK(rig.exec.stats().stalls() == 1);
+  }
 }
 
 TEST_CASE("run_realtime: a base that fails at once cannot make the loop spin faster than the period") {

@@ -19,9 +19,13 @@ std::string temp_path(const std::string& stem) {
   return "/tmp/p3at-teamkey-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" + stem;
 }
 
+/// Writes a key file readable by its owner only (as a key file must be).
 void write_text(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+  }
+  ::chmod(path.c_str(), 0600);
 }
 
 const std::string kHex = "000102030405060708090a0b0c0d0e0f101112131415161718191A1B1C1D1E1F";
@@ -81,6 +85,41 @@ TEST_CASE("load_team_key: missing file is not_found naming it; a good file loads
   REQUIRE_FALSE(huge.ok());
   CHECK(huge.error().message.find("not a key file") != std::string::npos);
   ::unlink(path.c_str());
+}
+
+TEST_CASE("key files: only a regular file readable by its owner only, never all zeros; a FIFO does not block") {
+  const std::string path = temp_path("strict.key");
+  write_text(path, kHex + "\n");
+  REQUIRE(hal::load_team_key(path).ok());
+  for (const ::mode_t mode : {0640u, 0604u, 0660u, 0644u}) {
+    ::chmod(path.c_str(), mode);
+    auto open_key = hal::load_team_key(path);
+    REQUIRE_FALSE(open_key.ok());
+    CHECK(open_key.error().message.find("readable by its owner only (chmod 600") != std::string::npos);
+  }
+  write_text(path, std::string(64, '0') + "\n");
+  auto zero = hal::load_team_key(path);
+  REQUIRE_FALSE(zero.ok());
+  CHECK(zero.error().message.find("all zeros") != std::string::npos);
+  CHECK_FALSE(hal::parse_team_key(std::string(64, '0'), "k").ok());
+  ::unlink(path.c_str());
+
+  // A FIFO with no writer: refused at once (it used to block for ever).
+  const std::string fifo = temp_path("fifo.key");
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  auto from_fifo = hal::load_team_key(fifo);
+  REQUIRE_FALSE(from_fifo.ok());
+  CHECK(from_fifo.error().message.find("is a FIFO, not a regular file") != std::string::npos);
+  // Nor does writing a key over it (--force) wait for a reader.
+  auto fresh = hal::generate_team_key();
+  REQUIRE(fresh.ok());
+  auto over_fifo = hal::write_team_key_file(fifo, fresh.value(), true);
+  REQUIRE_FALSE(over_fifo.ok());
+  CHECK(over_fifo.error().message.find("FIFO") != std::string::npos);
+  ::unlink(fifo.c_str());
+  auto dir = hal::load_team_key("/tmp");
+  REQUIRE_FALSE(dir.ok());
+  CHECK(dir.error().message.find("is a directory") != std::string::npos);
 }
 
 TEST_CASE("generated keys differ, are written with mode 0600 and read back; no silent replacement") {

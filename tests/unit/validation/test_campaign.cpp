@@ -118,7 +118,10 @@ TEST_CASE("runs that time out are kept and counted as failed") {
   o.run.timeout_s = 3.0;  // robot1 needs about 7 s for its 2 m, robot2 has not started
   const auto runs = p3at::team_sim::run_campaign(scenario, o);
   REQUIRE(runs.size() == 4);
-  for (const auto& r : runs) CHECK(r.outcome == "timeout");
+  // The reason, without --verbose: who is still running, in which state, why.
+  for (const auto& r : runs) {
+    CHECK(r.outcome == "timeout (robot1 in 'drive' still moving; robot2 in 'wait' waiting for 'r1_done' from robot1)");
+  }
   const auto p = p3at::team_sim::empirical_at(runs, 1000.0, 100.0);
   CHECK(p.runs == 4);
   CHECK(p.failed_runs == 4);

@@ -261,12 +261,44 @@ TEST_SUITE("evaluation") {
     CHECK(better->holds);
     CHECK(better->probability == doctest::Approx(p_near).epsilon(1e-5));
     CHECK(bare > 0.5);
-    // Ordering reversed: t1 < t3 fails, and the bare group with it.
+    // Ordering reversed: t1 < t3 fails, and the bare group with it. The
+    // bare group is one event about two dependent conditions: t1 < t3 <= 200
+    // implies t1 <= 200, so P = P(t1 < t3, t3 <= 200) <= P(t1 < t3) =
+    // Phi(-45 / sqrt(61)), not that times Phi(1) (independence). (doctest's
+    // Approx has an absolute scale of 1: compare such small numbers as ratios.)
     const auto late = v::evaluate_criterion(
         c, two_robots(), one_branch(robot(195, 25, 19.75, 18, 0.25), robot(150, 36, 20, 17.5, 0.25)), 0.5);
     REQUIRE(late.ok());
     CHECK_FALSE(late->holds);
-    CHECK(late->probability == doctest::Approx(phi(1.0) * phi(50.0 / 6.0) * phi(-45.0 / std::sqrt(61.0))).epsilon(1e-5));
+    const double ordered = phi(-45.0 / std::sqrt(61.0));  // P(t3 > 200) ~ 4e-17 is below this ratio's precision
+    CHECK(late->probability / ordered == doctest::Approx(1.0).epsilon(1e-3));
+  }
+
+  TEST_CASE("time events that share a robot's time are dependent: computed jointly, not as a product") {
+    // t1 ~ N(195, 5^2), t3 ~ N(198, 6^2), independent. P(t1 <= 200 and t3 <=
+    // 200 and t1 < t3): since t1 < t3 <= 200 implies t1 <= 200, it is
+    // the integral over t3 <= 200 of the density of t3 times P(t1 < t3) =
+    // Phi((t3 - 195) / 5), computed here by the trapezoid rule on a fine
+    // grid. The independence product Phi(1) Phi(2/6) Phi(3/sqrt(61)) is
+    // wrong by 0.043.
+    const v::Criterion c = v::parse_criterion(kEq5, "eq5.crit");
+    const auto verdict = v::evaluate_criterion(
+        c, two_robots(), one_branch(robot(195, 25, 19.75, 18, 0.01), robot(198, 36, 20, 17.5, 0.01)), 0.5);
+    REQUIRE(verdict.ok());
+    double exact = 0.0;
+    const double h = 0.001;
+    for (double t3 = 198.0 - 60.0; t3 <= 200.0; t3 += h) {
+      const double w = (t3 == 198.0 - 60.0 || t3 + h > 200.0) ? 0.5 : 1.0;
+      exact += w * h * std::exp(-0.5 * (t3 - 198.0) * (t3 - 198.0) / 36.0) / (6.0 * std::sqrt(2.0 * M_PI)) *
+               phi((t3 - 195.0) / 5.0);
+    }
+    const double product = phi(1.0) * phi(2.0 / 6.0) * phi(3.0 / std::sqrt(61.0));
+    REQUIRE(std::abs(exact - product) > 0.04);
+    // The explanation names the bare group first, with its probability.
+    const std::string e = verdict->explanation;
+    const std::size_t at = e.find("t1 < t3) = ");
+    REQUIRE(at != std::string::npos);
+    CHECK(std::stod(e.substr(at + 11)) == doctest::Approx(exact).epsilon(2e-4));
   }
 
   TEST_CASE("branches are weighted; pruned, blocked and unfinished mass count as failure") {
@@ -291,8 +323,15 @@ TEST_SUITE("evaluation") {
     CHECK(other->probability == doctest::Approx(0.5 * phi(10.0 / 6.0) + 0.3 * phi(-5.0 / 4.0) + 0.15).epsilon(1e-6));
   }
 
-  TEST_CASE("eq. (6): safety holds at every separation sample and at the end") {
+  TEST_CASE("eq. (6): safety must hold at every moment at once: a conservative bound over the samples and the end") {
+    // P(|p - q| > 1 at all times). Only the samples' marginals are known, so
+    // the verifier uses Boole's inequality, P(never close) >= 1 - sum of
+    // P(close at a sample), with "close" widened by the slack two robots at
+    // 0.3 m/s can close between samples a second apart (0.3 m). For a
+    // difference D ~ N(0, s^2 I), P(|D| <= r) = 1 - exp(-r^2 / (2 s^2)).
     const v::Criterion c = v::parse_criterion(kEq6, "eq6.crit");
+    const double r = 1.0 + 0.5 * (0.3 + 0.3);
+    const auto close_at = [&](double s2) { return 1.0 - std::exp(-r * r / (2.0 * s2)); };
     v::SystemOutcome o = one_branch(robot(150, 25, 0, 0, 1.0), robot(160, 25, 0, 0, 1.0));
     v::SeparationSample close;
     close.robot_i = 1;  // either order of the pair
@@ -306,15 +345,14 @@ TEST_SUITE("evaluation") {
     o.branches[0].separations = {wide, close};
     auto verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
     REQUIRE(verdict.ok());
-    // The closest moment decides: P(|D| > 1) = exp(-1 / (2 * 0.25)).
-    CHECK(verdict->probability == doctest::Approx(std::exp(-2.0)).epsilon(1e-5));
+    CHECK(verdict->probability == doctest::Approx(0.0));  // the bound is vacuous: 1 - 0.34 - 1.0 - 0.19 < 0
     CHECK_FALSE(verdict->holds);
-    // Without that moment, the end (difference variance 1 + 1) is the closest.
+    // Without that moment: the wide sample and the end (difference variance 1 + 1).
     o.branches[0].separations = {wide};
     verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
     REQUIRE(verdict.ok());
-    CHECK(verdict->probability == doctest::Approx(std::exp(-0.25)).epsilon(1e-5));
-    CHECK_FALSE(verdict->holds);  // 0.7788, not > 0.8
+    CHECK(verdict->probability == doctest::Approx(1.0 - close_at(4.0) - close_at(2.0)).epsilon(1e-5));
+    CHECK_FALSE(verdict->holds);
     // Robots that end far apart and never came close: safe.
     o.branches[0].robots[1].final_position.mean = Eigen::Vector2d(10, 0);
     o.branches[0].separations.clear();
@@ -323,6 +361,36 @@ TEST_SUITE("evaluation") {
     CHECK(verdict->holds);
     CHECK(verdict->probability == doctest::Approx(1.0).epsilon(1e-6));
   }
+
+  TEST_CASE("eq. (6): several moments each 95 % safe are not 95 % safe together") {
+    // Two independent-looking close passes, each with P(close) = 0.05 at the
+    // widened distance: the smallest marginal (0.95, used before) says the
+    // criterion holds at 0.9; the probability of being apart at both can be
+    // as low as 0.9, so the verifier must not say more than 1 - 0.05 - 0.05.
+    const v::Criterion c = v::parse_criterion(kEq6, "eq6.crit");
+    const double r = 1.3;
+    const double s2 = r * r / (2.0 * -std::log(1.0 - 0.05));  // P(|D| <= r) = 0.05
+    v::SystemOutcome o = one_branch(robot(150, 25, 0, 0, 1e-6), robot(160, 25, 50, 0, 1e-6));
+    v::SeparationSample pass;
+    pass.robot_i = 0;
+    pass.robot_j = 1;
+    pass.difference.cov = s2 * Eigen::Matrix2d::Identity();
+    o.branches[0].separations = {pass, pass};
+    const auto verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
+    REQUIRE(verdict.ok());
+    CHECK(verdict->probability == doctest::Approx(0.9).epsilon(1e-4));
+    // A required separation the recorded samples cannot vouch for (they are
+    // kept only within 6 m): refused, probability 0.
+    const v::Criterion far = v::parse_criterion(
+        "criterion far\nnetwork Delay<t1> ; (Delay<t2> # At<robot1, p>) |\n        Delay<t3> ; (Delay<t4> # At<robot2, q>)\n"
+        "constraints\n  t1, t3 > 0\n  P(|p - q| > 4.0) > 0.8\n",
+        "far.crit");
+    const auto refused = v::evaluate_criterion(far, two_robots(), o, 0.5);
+    REQUIRE(refused.ok());
+    CHECK(refused->probability == doctest::Approx(0.0));
+    CHECK_FALSE(refused->holds);
+  }
+
 
   TEST_CASE("time forms: offsets, reversed sides, lower bounds") {
     const std::string head =

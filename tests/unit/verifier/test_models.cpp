@@ -223,6 +223,18 @@ TEST_SUITE("reading") {
     CHECK(m.budget == p3at::verifier::Budget{});
     CHECK(m.budget.max_components == 8);
   }
+  TEST_CASE("the speeds: a file without them loads (calibrated speed unknown, the P3-AT's top speed); both round-trip") {
+    const Models old_file = parse(kMinimal);
+    CHECK(old_file.robots[0].kinematics.calibrated_speed_mps == 0.0);  // unknown: verify warns
+    CHECK(old_file.robots[0].kinematics.top_speed_mps == 0.6);
+    const Models m = parse(std::string(kMinimal) + "    kinematics: {calibrated_speed_mps: 0.35, top_speed_mps: 0.5}\n");
+    CHECK(m.robots[0].kinematics.calibrated_speed_mps == 0.35);
+    CHECK(m.robots[0].kinematics.top_speed_mps == 0.5);
+    const Models again = parse(p3at::verifier::write_models(m));
+    CHECK(again.robots[0].kinematics == m.robots[0].kinematics);
+    // An unknown calibrated speed stays unknown through the writer (not written as 0).
+    CHECK(p3at::verifier::write_models(old_file).find("calibrated_speed_mps") == std::string::npos);
+  }
   TEST_CASE("find_robot by name") {
     const Models m = parse(kFull);
     REQUIRE(m.find_robot("bravo") != nullptr);

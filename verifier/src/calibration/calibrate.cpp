@@ -3,6 +3,7 @@
 // robot's straights and spins to the motion fit, all its manoeuvres to the
 // kinematics fit, and the messages' delays to the delay fit.
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <utility>
@@ -103,6 +104,16 @@ RobotCalibration calibrate_robot(const std::string& robot, const std::vector<con
   calibration_detail::KinematicsFit k = calibration_detail::fit_kinematics(robot, manoeuvres, options.kinematics_defaults);
   calibration_detail::MotionFit e = calibration_detail::fit_motion(straights, spins);
   out.model.kinematics = k.kinematics;
+  // The speed the motion error was measured at: the fastest command of the
+  // straight runs. A mission faster than that is outside the fit (the
+  // verifier lists it as an approximation, approximations.hpp).
+  out.model.kinematics.calibrated_speed_mps = 0.0;
+  for (const Manoeuvre* m : manoeuvres) {
+    if (m->kind != ManoeuvreKind::straight) continue;
+    for (const CycleRow& row : m->rows) {
+      out.model.kinematics.calibrated_speed_mps = std::max(out.model.kinematics.calibrated_speed_mps, std::abs(row.cmd_trans_mps));
+    }
+  }
   out.model.motion = e.motion;
   out.fits = std::move(k.fits);
   out.fits.insert(out.fits.end(), e.fits.begin(), e.fits.end());

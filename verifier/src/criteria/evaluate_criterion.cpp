@@ -3,6 +3,8 @@
 // constraint group's probability branch by branch.
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <cstdio>
 #include <map>
 #include <optional>
@@ -212,23 +214,182 @@ class Evaluator {
         return detail::is_less(e.op) ? within : 1.0 - within;
       }
       case detail::Event::Kind::distance_between: {
-        // Safety (eq. 6): at every sampled moment of the branch and at the end.
+        // Safety (eq. 6): "for all times", over the separation samples the
+        // evaluation recorded along the branch (about every second while a
+        // robot moves, at each event, and at the end).
         const std::size_t i = bound_.at(e.a).robot, j = bound_.at(e.b).robot;
-        const auto sample = [&](const Gaussian2& difference) {
-          const double within = probability_within(difference, Eigen::Vector2d::Zero(), e.value);
-          return detail::is_less(e.op) ? within : 1.0 - within;
+        const auto within = [&](const Gaussian2& difference, double r) {
+          return probability_within(difference, Eigen::Vector2d::Zero(), r);
         };
         Gaussian2 last;
         last.mean = b.robots[i].final_position.mean - b.robots[j].final_position.mean;
         last.cov = b.robots[i].final_position.cov + b.robots[j].final_position.cov;
-        double p = sample(last);
+        std::vector<const Gaussian2*> moments{&last};
         for (const SeparationSample& s : b.separations) {
-          if ((s.robot_i == i && s.robot_j == j) || (s.robot_i == j && s.robot_j == i)) p = std::min(p, sample(s.difference));
+          if ((s.robot_i == i && s.robot_j == j) || (s.robot_i == j && s.robot_j == i)) moments.push_back(&s.difference);
         }
+        if (!detail::is_less(e.op)) {
+          // P(never closer than d) >= 1 - sum over the samples of P(closer
+          // than d + slack) (Boole's inequality: the minimum over samples of
+          // the marginal probability, used before, is an upper bound, an
+          // optimistic answer). Between two samples a second apart the
+          // robots' distance can shrink by at most their two top speeds
+          // times half a second: the slack. The evaluation records samples
+          // only where the mean separation is within kSeparationHorizonM
+          // (sequencer.cpp, 6 m); a distance beyond half of it cannot be
+          // checked from them, and is refused (probability 0).
+          constexpr double kSampleSpacingS = 1.0;
+          constexpr double kSeparationHorizonM = 6.0;
+          const double slack = 0.5 * kSampleSpacingS * (m_.robots[i].max_speed_mps + m_.robots[j].max_speed_mps);
+          const double reach = e.value + slack;
+          if (reach > 0.5 * kSeparationHorizonM) return 0.0;
+          double close = 0.0;
+          for (const Gaussian2* d : moments) close += within(*d, reach);
+          return std::max(0.0, 1.0 - close);
+        }
+        // |p - q| < d at all times: the smallest marginal probability over
+        // the samples (an upper bound of the joint: optimistic; the samples
+        // also leave out moments more than 6 m apart).
+        double p = 1.0;
+        for (const Gaussian2* d : moments) p = std::min(p, within(*d, e.value));
         return p;
       }
     }
     return 0.0;
+  }
+
+  static bool is_time(const detail::Event& e) {
+    return e.kind == detail::Event::Kind::time_bound || e.kind == detail::Event::Kind::time_order;
+  }
+
+  /// P(every time event) in one branch, the robots' finish times being
+  /// independent mixtures. Events are split into groups that share no
+  /// variable (independent, so their probabilities multiply); within a
+  /// group, each variable but the last is integrated out on a grid of
+  /// cells of exact probability (evaluated at each cell's conditional
+  /// mean), and the last one's events become an interval of its CDF. A
+  /// group of more than three robots' times falls back to the Fréchet lower
+  /// bound max(0, sum P - (n - 1)): conservative, never optimistic.
+  double joint_time_probability(const Branch& b, const std::vector<detail::Event>& events) const {
+    std::vector<const detail::Event*> time_events;
+    for (const detail::Event& e : events) {
+      if (is_time(e)) time_events.push_back(&e);
+    }
+    if (time_events.empty()) return 1.0;
+    // Variables (robot indices) and connected groups.
+    std::vector<std::size_t> group(time_events.size());
+    for (std::size_t i = 0; i < group.size(); ++i) group[i] = i;
+    const auto root = [&](std::size_t i) {
+      while (group[i] != i) i = group[i];
+      return i;
+    };
+    const auto shares = [&](const detail::Event& x, const detail::Event& y) {
+      const auto vars = [&](const detail::Event& e) {
+        std::vector<std::size_t> v{bound_.at(e.a).robot};
+        if (e.kind == detail::Event::Kind::time_order) v.push_back(bound_.at(e.b).robot);
+        return v;
+      };
+      for (const std::size_t u : vars(x)) {
+        for (const std::size_t w : vars(y)) {
+          if (u == w) return true;
+        }
+      }
+      return false;
+    };
+    for (std::size_t i = 0; i < time_events.size(); ++i) {
+      for (std::size_t j = i + 1; j < time_events.size(); ++j) {
+        if (shares(*time_events[i], *time_events[j])) group[root(j)] = root(i);
+      }
+    }
+    double p = 1.0;
+    for (std::size_t g = 0; g < time_events.size(); ++g) {
+      if (root(g) != g) continue;
+      std::vector<const detail::Event*> members;
+      std::vector<std::size_t> vars;
+      for (std::size_t i = 0; i < time_events.size(); ++i) {
+        if (root(i) != g) continue;
+        members.push_back(time_events[i]);
+        for (const std::string* name : {&time_events[i]->a, &time_events[i]->b}) {
+          if (name->empty()) continue;
+          const std::size_t r = bound_.at(*name).robot;
+          if (std::find(vars.begin(), vars.end(), r) == vars.end()) vars.push_back(r);
+        }
+      }
+      if (members.size() == 1) {  // one event: its closed form
+        p *= event_probability(b, *members.front());
+        continue;
+      }
+      if (vars.size() > 3) {
+        double sum = 0.0;
+        for (const detail::Event* e : members) sum += event_probability(b, *e);
+        p *= std::max(0.0, sum - static_cast<double>(members.size() - 1));
+        continue;
+      }
+      std::vector<double> value(vars.size(), 0.0);
+      p *= integrate(b, members, vars, value, 0);
+    }
+    return p;
+  }
+
+  /// Integrates out vars[k..] given value[0..k).
+  double integrate(const Branch& b, const std::vector<const detail::Event*>& members, const std::vector<std::size_t>& vars,
+                   std::vector<double>& value, std::size_t k) const {
+    const auto index_of = [&](const std::string& name) {
+      const std::size_t r = bound_.at(name).robot;
+      return static_cast<std::size_t>(std::find(vars.begin(), vars.end(), r) - vars.begin());
+    };
+    const Mixture1& t = b.robots[vars[k]].finish_time_s;
+    if (k + 1 == vars.size()) {
+      // The last variable: every event is a bound on it, or already decided.
+      double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+      for (const detail::Event* e : members) {
+        const std::size_t ia = index_of(e->a);
+        const bool less = detail::is_less(e->op);
+        if (e->kind == detail::Event::Kind::time_bound) {
+          // a + offset OP value: a bound on a (the last variable).
+          (less ? hi : lo) = less ? std::min(hi, e->value - e->offset) : std::max(lo, e->value - e->offset);
+          continue;
+        }
+        const std::size_t ib = index_of(e->b);
+        if (ia == k && ib == k) return 0.0;  // not produced by the parser (a variable compared with itself)
+        if (ia == k) {  // a + offset OP value[b]
+          const double bound = value[ib] - e->offset;
+          if (less) hi = std::min(hi, bound); else lo = std::max(lo, bound);
+        } else if (ib == k) {  // value[a] + offset OP b
+          const double bound = value[ia] + e->offset;
+          if (less) lo = std::max(lo, bound); else hi = std::min(hi, bound);
+        } else {
+          const bool holds = less ? value[ia] + e->offset < value[ib] : value[ia] + e->offset > value[ib];
+          if (!holds) return 0.0;
+        }
+      }
+      if (!(lo < hi)) return 0.0;
+      return std::max(0.0, (std::isfinite(hi) ? t.cdf(hi) : 1.0) - (std::isfinite(lo) ? t.cdf(lo) : 0.0));
+    }
+    // Integrate this variable out: per component, cells of exact mass over
+    // mean +- 8 sd, each evaluated at its conditional mean.
+    const std::size_t cells = vars.size() == 2 ? 400 : 48;
+    double total = 0.0;
+    for (const Component1& c : t.components) {
+      if (!(c.weight > 0.0)) continue;
+      if (!(c.var > 0.0)) {
+        value[k] = c.mean;
+        total += c.weight * integrate(b, members, vars, value, k + 1);
+        continue;
+      }
+      const double sd = std::sqrt(c.var);
+      constexpr double kSpan = 8.0;
+      for (std::size_t i = 0; i < cells; ++i) {
+        const double z0 = -kSpan + 2.0 * kSpan * static_cast<double>(i) / static_cast<double>(cells);
+        const double z1 = -kSpan + 2.0 * kSpan * static_cast<double>(i + 1) / static_cast<double>(cells);
+        const double mass = normal_cdf(z1) - normal_cdf(z0);
+        if (!(mass > 0.0)) continue;
+        const double z = (normal_pdf(z0) - normal_pdf(z1)) / mass;  // the cell's conditional mean
+        value[k] = c.mean + sd * z;
+        total += c.weight * mass * integrate(b, members, vars, value, k + 1);
+      }
+    }
+    return total;
   }
 
   double probability(const std::vector<detail::Event>& events) const {
@@ -239,8 +400,14 @@ class Evaluator {
       bool finished = true;
       for (const std::size_t r : robots_) finished = finished && b.robots[r].finished;
       if (!finished) continue;
-      double p = 1.0;
-      for (const detail::Event& e : events) p *= event_probability(b, e);
+      // Time events that share a robot's finish time are dependent (t1 <= 200
+      // and t1 < t3 both ask about t1): computed jointly. Events on
+      // different robots' times, and position events, are independent
+      // within a branch as the model carries them.
+      double p = joint_time_probability(b, events);
+      for (const detail::Event& e : events) {
+        if (!is_time(e)) p *= event_probability(b, e);
+      }
       total += b.weight * std::clamp(p, 0.0, 1.0);
     }
     return std::clamp(total, 0.0, 1.0);

@@ -5,6 +5,8 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
+#include <tuple>
 #include <string>
 #include <utility>
 #include <variant>
@@ -230,7 +232,10 @@ class Sequencer {
       for (BranchState& b : active) advance(std::move(b), next);
       active = merge_and_prune(std::move(next));
     }
-    for (const BranchState& b : active) outcome_.blocked_mass += b.weight;
+    for (const BranchState& b : active) {
+      outcome_.blocked_mass += b.weight;
+      note_unfinished(b, "loop");
+    }
   }
 
   std::vector<BranchState> start() {
@@ -247,10 +252,12 @@ class Sequencer {
     }
     std::vector<BranchState> branches{std::move(b)};
     for (std::size_t i = 0; i < mission_.robots.size(); ++i) {
+      entering_ = i;  // robots after i have not entered a state yet
       std::vector<BranchState> entered;
       for (BranchState& br : branches) enter(std::move(br), i, mission_.robots[i].initial, entered);
       branches = std::move(entered);
     }
+    entering_ = kNone;
     return branches;
   }
 
@@ -261,6 +268,7 @@ class Sequencer {
     evaluate(start());
     record_entries_ = false;
     outcome_ = SystemOutcome{};
+    legs_seen_.clear();
 
     BranchState b;
     b.clock = Mixture1::point(snap.elapsed_s);
@@ -294,10 +302,12 @@ class Sequencer {
     std::vector<BranchState> branches{std::move(b)};
     for (std::size_t i = 0; i < mission_.robots.size(); ++i) {
       if (snap.robots[i].finished) continue;
+      entering_ = mission_.robots.size();  // every robot's state is known from the snapshot
       std::vector<BranchState> entered;
       for (BranchState& br : branches) enter(std::move(br), i, snap.robots[i].state, entered, /*trace=*/false);
       branches = std::move(entered);
     }
+    entering_ = kNone;
     return branches;
   }
 
@@ -374,7 +384,12 @@ class Sequencer {
       }
     }
     const StateAnalysis& a = track.analysis;
-    if (a.blocked > kNegligible) outcome_.blocked_mass += b.weight * a.blocked;
+    if (a.blocked > kNegligible) {
+      outcome_.blocked_mass += b.weight * a.blocked;
+      note_blocked(i, state, a.blocked_x_m + track.error.mean(0), a.blocked_y_m + track.error.mean(1), "stuck",
+                   b.weight * a.blocked);
+    }
+    note_concurrent_legs(b, i, state);
     if (a.exits.empty()) {
       if (a.blocked < 1.0 - kNegligible) {
         b.weight *= (1.0 - a.blocked);
@@ -471,7 +486,10 @@ class Sequencer {
     if (candidates.empty()) {
       const bool done = std::all_of(b.robots.begin(), b.robots.end(), [](const Track& t) { return t.final; });
       if (done) finish(std::move(b));
-      else outcome_.blocked_mass += b.weight;  // someone waits for a message nobody will send
+      else {
+        outcome_.blocked_mass += b.weight;  // someone waits for a message nobody will send
+        note_unfinished(b, "waiting");
+      }
       return;
     }
     const auto residual = [&](const Candidate& c) -> const Mixture1& { return b.robots[c.robot].pending[c.index].residual; };
@@ -536,6 +554,13 @@ class Sequencer {
     }
     if (std::count_if(first.begin(), first.end(), [&](double f) { return f / total >= kNegligible; }) > 1) {
       ++outcome_.ordering_splits;
+    }
+    {
+      std::vector<std::size_t> racing;
+      for (std::size_t c = 0; c < rivals.size(); ++c) {
+        if (first[c] / total >= kNegligible) racing.push_back(candidates[rivals[c]].robot);
+      }
+      note_race(b, racing);
     }
     for (std::size_t c = 0; c < rivals.size(); ++c) {
       const double p = first[c] / total;
@@ -813,12 +838,70 @@ class Sequencer {
     a.weight = w;
   }
 
+  // ---- facts for the approximations check (outcome.hpp: BlockedRecord,
+  // RaceRecord, ConcurrentLegs); deduplicated, so their cost is bounded by
+  // the mission's size, not by the number of branches or events.
+
+  void note_blocked(std::size_t i, std::size_t state, double x_m, double y_m, const std::string& why, double mass) {
+    for (BlockedRecord& r : outcome_.blocked) {
+      if (r.robot == i && r.state == state && r.why == why) {
+        r.mass += mass;
+        return;
+      }
+    }
+    outcome_.blocked.push_back({i, state, x_m, y_m, why, mass});
+  }
+
+  /// Every robot of b that has not finished, as blocked for `why`.
+  void note_unfinished(const BranchState& b, const std::string& why) {
+    for (std::size_t i = 0; i < b.robots.size(); ++i) {
+      const Track& t = b.robots[i];
+      if (t.final) continue;
+      const Eigen::Vector2d p = t.true_mean();
+      note_blocked(i, t.state, p.x(), p.y(), why, b.weight);
+    }
+  }
+
+  void note_race(const BranchState& b, std::vector<std::size_t> robots) {
+    std::sort(robots.begin(), robots.end());
+    robots.erase(std::unique(robots.begin(), robots.end()), robots.end());
+    if (robots.size() < 3) return;
+    RaceRecord r;
+    r.robots = robots;
+    for (const std::size_t i : robots) r.states.push_back(b.robots[i].state);
+    for (const RaceRecord& seen : outcome_.races) {
+      if (seen.robots == r.robots && seen.states == r.states) return;
+    }
+    outcome_.races.push_back(std::move(r));
+  }
+
+  /// Robot i has just entered `state`: if it drives a leg, every teammate
+  /// driving one at the same time is noted (each evaluation ignores the other).
+  void note_concurrent_legs(const BranchState& b, std::size_t i, std::size_t state) {
+    const auto* mine = std::get_if<mission::GoToGuardedParams>(&mission_.robots[i].states[state].behavior);
+    if (mine == nullptr) return;
+    const Eigen::Vector2d from = b.robots[i].true_mean();
+    for (std::size_t j = 0; j < b.robots.size(); ++j) {
+      if (j == i || b.robots[j].final || (entering_ != kNone && j > entering_)) continue;
+      const std::size_t js = b.robots[j].state;
+      const auto* theirs = std::get_if<mission::GoToGuardedParams>(&mission_.robots[j].states[js].behavior);
+      if (theirs == nullptr) continue;
+      if (!legs_seen_.insert({i, state, j, js}).second) continue;
+      const Eigen::Vector2d at = b.robots[j].true_mean();
+      outcome_.concurrent_legs.push_back({i, state, j, js, from.x(), from.y(), mine->goal.x_m, mine->goal.y_m, at.x(),
+                                          at.y(), theirs->goal.x_m, theirs->goal.y_m});
+    }
+  }
+
   const mission::Mission& mission_;
   const Models& models_;
   std::vector<Segment> walls_;
   std::vector<const RobotModel*> robot_models_;
   SystemOutcome outcome_;
   bool record_entries_ = false;
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  std::size_t entering_ = kNone;
+  std::set<std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>> legs_seen_;  ///< concurrent_legs' keys  ///< while the initial states are entered: the robot entering
   std::map<std::pair<std::size_t, std::size_t>, ErrorState> entry_errors_;
 };
 

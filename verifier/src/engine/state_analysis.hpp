@@ -42,6 +42,9 @@ struct PathSample {
 struct StateAnalysis {
   std::vector<TimedExit> exits;       ///< probabilities sum to 1 - blocked
   double blocked = 0.0;               ///< probability no self-timed exit ever fires (stuck, or none exists)
+  /// Mean odometric position where the stuck paths ended (for reporting where
+  /// a robot is blocked; the start when none moved or blocked == 0).
+  double blocked_x_m = 0.0, blocked_y_m = 0.0;
   BaseState end;                      ///< mean odometric pose and velocities when the state ends
   Eigen::Matrix2d end_spread = Eigen::Matrix2d::Zero();  ///< odometric end-position spread (GoToGuarded)
   bool sets_spread = false;           ///< true when end_spread replaces the robot's previous spread

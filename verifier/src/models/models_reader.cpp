@@ -51,7 +51,8 @@ Kinematics read_kinematics(const Map& parent) {
   Kinematics k;
   if (!parent.has("kinematics")) return k;
   const Map m = parent.map("kinematics", {"cycle_s", "max_rot_vel_degps", "trans_accel_mps2", "trans_decel_mps2",
-                                          "rot_accel_degps2", "rot_decel_degps2", "robot_radius_m", "rot_gain"});
+                                          "rot_accel_degps2", "rot_decel_degps2", "robot_radius_m", "rot_gain",
+                                          "calibrated_speed_mps", "top_speed_mps"});
   using models_detail::degrees_to_radians;
   k.cycle_s = m.number_or("cycle_s", kCycle, k.cycle_s);
   if (m.has("max_rot_vel_degps")) k.max_rot_vel_radps = degrees_to_radians(m.number("max_rot_vel_degps", kPositive));
@@ -61,6 +62,9 @@ Kinematics read_kinematics(const Map& parent) {
   if (m.has("rot_decel_degps2")) k.rot_decel_radps2 = degrees_to_radians(m.number("rot_decel_degps2", kPositive));
   k.robot_radius_m = m.number_or("robot_radius_m", kRange, k.robot_radius_m);
   k.rot_gain = m.number_or("rot_gain", kPositive, k.rot_gain);
+  // Both optional: a file without them still loads (calibrated speed unknown).
+  k.calibrated_speed_mps = m.number_or("calibrated_speed_mps", kPositive, k.calibrated_speed_mps);
+  k.top_speed_mps = m.number_or("top_speed_mps", kPositive, k.top_speed_mps);
   return k;
 }
 

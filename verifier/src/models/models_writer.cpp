@@ -131,6 +131,10 @@ std::string write_models(const Models& models) {
     out += "      rot_decel_degps2: " + degrees(k.rot_decel_radps2, "rot_decel_radps2") + "\n";
     out += "      robot_radius_m: " + plain(k.robot_radius_m, "robot_radius_m") + "\n";
     out += "      rot_gain: " + plain(k.rot_gain, "rot_gain") + "\n";
+    if (k.calibrated_speed_mps > 0.0) {
+      out += "      calibrated_speed_mps: " + plain(k.calibrated_speed_mps, "calibrated_speed_mps") + "\n";
+    }
+    out += "      top_speed_mps: " + plain(k.top_speed_mps, "top_speed_mps") + "\n";
     out += "    motion:\n";
     out += "      trans_scale: " + plain(e.trans_scale, "trans_scale") + "\n";
     out += "      rot_scale: " + plain(e.rot_scale, "rot_scale") + "\n";

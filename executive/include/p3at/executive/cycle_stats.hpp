@@ -25,6 +25,13 @@ class CycleStats {
   std::uint64_t cycles() const { return cycles_; }
   std::uint64_t overruns() const { return overruns_; }
   std::uint64_t missed_updates() const { return missed_updates_; }
+  /// Records a stall: a gap between two cycles of `missed_cycles` periods or
+  /// more (the process was stopped, or starved of CPU), lasting `stall_ms`.
+  void record_stall(std::uint64_t missed_cycles, std::int64_t stall_ms);
+  std::uint64_t stalls() const { return stalls_; }
+  /// Cycles the executive did not run because of stalls (summed).
+  std::uint64_t missed_cycles() const { return missed_cycles_; }
+  std::int64_t longest_stall_ms() const { return longest_stall_ms_; }
   /// Longest compute time ever recorded, µs.
   double max_us() const { return max_us_; }
   std::int64_t period_us() const { return period_us_; }
@@ -44,6 +51,9 @@ class CycleStats {
   std::uint64_t cycles_ = 0;
   std::uint64_t overruns_ = 0;
   std::uint64_t missed_updates_ = 0;
+  std::uint64_t stalls_ = 0;
+  std::uint64_t missed_cycles_ = 0;
+  std::int64_t longest_stall_ms_ = 0;
   double max_us_ = 0.0;
 };
 

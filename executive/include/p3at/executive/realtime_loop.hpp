@@ -22,6 +22,14 @@ struct RealtimeOptions {
   std::int64_t linger_ms = 0;
   /// The abort reason when `stop_requested` ends the mission.
   std::string interrupt_reason = "interrupted";
+  /// A stall (docs/executive.md, "Stalls"): more than two periods of wall
+  /// time between two cycles, or three or more controller updates at once.
+  /// One that lasted longer than this (the firmware's watchdog: 2 s) aborts
+  /// the mission: the firmware has halted the robot meanwhile and the world
+  /// moved on. 0 = never abort for a stall.
+  std::int64_t stall_abort_ms = 2000;
+  /// Instead of aborting after such a stall, go on (saying so).
+  bool resume_after_stall = false;
 };
 
 /// Runs `executive` until it finishes or aborts, or `stop_requested` becomes true
@@ -31,6 +39,13 @@ struct RealtimeOptions {
 /// executive's clock, so a failing base cannot spin the CPU. On the way out the
 /// robot is stopped (DriveBase::stop()). Returns the final outcome. `drive` must
 /// be the DriveBase the executive was built with.
+///
+/// After a stall (more than two periods of wall time since the last cycle),
+/// the loop first takes every controller update already queued
+/// (DriveBase::wait_for_update(0)), so the next cycle runs on the newest one instead of replaying
+/// stale ones (each would send a motion command computed from the past); the
+/// stall is logged (`event=stall`) and counted (CycleStats::stalls,
+/// missed_cycles), and a long one aborts (see stall_abort_ms).
 Outcome run_realtime(RobotExecutive& executive, hal::DriveBase& drive, const std::atomic<bool>& stop_requested,
                      const RealtimeOptions& options = {});
 

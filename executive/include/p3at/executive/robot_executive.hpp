@@ -123,6 +123,8 @@ class RobotExecutive {
   std::uint64_t transition_count() const { return transition_count_; }
 
   const CycleStats& stats() const { return stats_; }
+  /// Records a stall seen by the driver (run_realtime): cycles not run.
+  void note_stall(std::uint64_t missed_cycles, std::int64_t stall_ms) { stats_.record_stall(missed_cycles, stall_ms); }
   const MessageBook& messages() const { return messages_; }
   const NoiseSource& noise() const { return noise_; }
   const mission::Mission& mission() const { return mission_; }

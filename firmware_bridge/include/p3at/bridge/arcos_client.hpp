@@ -34,6 +34,13 @@ struct ClientConfig {
   int keepalive_sips = 5;            ///< …or this many SIPs, whichever comes first: a simulator
                                      ///< running faster than real time sends SIPs faster, and its
                                      ///< watchdog counts simulated time
+  /// The keep-alive repeats the motion in force only while the caller keeps
+  /// asking for it: after this many SIPs without a set_velocity() call (the
+  /// caller stalled: stopped, starved, or reading a backlog of stale SIPs) it
+  /// sends STOP instead, once. 0 = never (the default: an operator's tool sets
+  /// a velocity once and expects it kept); mission_exec, whose executive asks
+  /// every cycle, uses 10 SIPs, half the firmware watchdog (2 s).
+  int motion_stale_sips = 0;
   int link_loss_ms = 1000;           ///< no SIP for this long → link lost
   int close_grace_ms = 100;          ///< between ENABLE 0 and CLOSE on disconnect
   bool serial_preamble = false;      ///< send ARIA's "WMS2\r" first (serial links only)
@@ -57,6 +64,7 @@ struct ClientStats {
   std::uint64_t bad_sips = 0;         ///< SIP packets that failed to decode
   std::uint64_t commands_sent = 0;
   std::uint64_t keepalives_sent = 0;  ///< PULSEs or VEL/RVEL repeats sent only to keep the link alive
+  std::uint64_t stale_motion_stops = 0;  ///< STOPs sent because the caller stopped asking for motion
   std::uint64_t handshakes = 0;       ///< completed handshakes
   std::uint64_t handshake_failures = 0;
   std::uint64_t link_losses = 0;
@@ -110,6 +118,8 @@ class ArcosClient final : public hal::DriveBase {
   Status send(const arcos::Frame& frame);
   Status send_motion();
   void service_keepalive();
+  /// What came back since the handshake started (`before`: the decoder's counters then).
+  std::string handshake_diagnosis(const arcos::DecoderStats& before) const;
   void check_link();
   void lose_link(const std::string& why);
   bool motion_allowed(const char* what);
@@ -128,6 +138,8 @@ class ArcosClient final : public hal::DriveBase {
   std::int64_t last_sip_us_ = 0;
   std::int64_t last_sent_us_ = 0;
   std::uint64_t sips_at_last_send_ = 0;
+  std::uint64_t sips_at_motion_request_ = 0;
+  std::uint64_t handshake_bytes_ = 0;  ///< bytes read during the current handshake  ///< stats_.sips at the latest set_velocity()
   std::int64_t last_reconnect_attempt_us_ = 0;
   bool estop_latched_ = false;
   bool ever_connected_ = false;

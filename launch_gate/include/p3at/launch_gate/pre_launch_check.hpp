@@ -35,6 +35,10 @@ struct CheckRequest {
   std::optional<std::string> models_path;  ///< default: default_models_path(mission_path)
   verifier::VerifyOptions options;         ///< tmax_s / rmax_m / threshold override the mission's criteria
   std::vector<std::string> criteria_files; ///< extra criteria (PARS criterion files), as for `vipars verify`
+  /// The operator accepts a mission the model does not vouch for (an
+  /// unvouched approximation, docs/verifier.md): its GO stands, logged and
+  /// published as OVERRIDE. Without it such a mission is cannot_evaluate.
+  bool accept_unvouched = false;
 };
 
 enum class CheckStatus {
@@ -43,8 +47,13 @@ enum class CheckStatus {
   bad_input,   ///< the mission, models or a criteria file does not load (file:line:column in `error`)
   no_models,   ///< there is no models file: without models the gate cannot run
   cannot_run,  ///< the verifier could not evaluate this mission with these models
+  /// The probabilities say GO, but the mission has an approximation the model
+  /// does not vouch for (VerifyResult::approximations): not GO unless the
+  /// operator accepts (CheckRequest::accept_unvouched). A NO-GO stays no_go.
+  cannot_evaluate,
 };
-const char* to_string(CheckStatus status);  ///< "GO", "NO-GO", "bad-input", "no-models", "cannot-run"
+/// "GO", "NO-GO", "bad-input", "no-models", "cannot-run", "cannot-evaluate"
+const char* to_string(CheckStatus status);
 
 struct CheckReport {
   CheckStatus status = CheckStatus::cannot_run;
@@ -54,7 +63,9 @@ struct CheckReport {
   std::string mission_hash;   ///< mission_content_hash() of both files; empty when they did not load
   std::optional<mission::Mission> mission;  ///< as loaded (the executive runs this very value)
   std::optional<verifier::Models> models;
-  verifier::VerifyResult result;  ///< the verifier's answer (go / no_go only)
+  verifier::VerifyResult result;  ///< the verifier's answer (go / no_go / cannot_evaluate), approximations located
+  /// GO only because the operator accepted unvouched approximations.
+  bool accepted_unvouched = false;
   double verify_ms = 0.0;     ///< the verifier call alone (wall time)
   double total_ms = 0.0;      ///< reading, hashing, parsing and verifying: the gate's decision time (wall time)
   /// The same as total_ms in CPU time of the calling thread: what the decision
@@ -62,6 +73,8 @@ struct CheckReport {
   double total_cpu_ms = 0.0;
 
   bool verified() const { return status == CheckStatus::go || status == CheckStatus::no_go; }
+  /// The verifier answered (result is filled): verified, or cannot_evaluate.
+  bool evaluated() const { return verified() || status == CheckStatus::cannot_evaluate; }
 };
 
 /// Runs the check. Never throws: load errors come back as bad_input with
@@ -70,7 +83,9 @@ CheckReport pre_launch_check(const CheckRequest& request, const VerdictSource& s
 
 /// This robot's verdict for the team link. With `override_gate` the decision
 /// is OVERRIDE whatever the verifier said (the probabilities are still the
-/// verifier's, and `detail` says what it had decided). Precondition: report.verified().
+/// verifier's, and `detail` says what it had decided); so is a GO the
+/// operator got by accepting unvouched approximations (`detail` names them).
+/// Precondition: report.verified().
 gate::GateVerdict make_verdict(const CheckReport& report, bool override_gate);
 
 }  // namespace p3at::gate

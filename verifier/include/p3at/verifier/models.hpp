@@ -29,6 +29,13 @@ struct Kinematics {
   double rot_decel_radps2 = 100.0 * std::numbers::pi / 180.0;
   double robot_radius_m = 0.4;       ///< AVOID_OBSTACLES' robot radius (executive default)
   double rot_gain = 1.5;             ///< vector_to_velocity's gain (executive default)
+  /// The translational speed the motion model was calibrated at (`vipars
+  /// calibrate --speed`); 0 = unknown (a file from before it was recorded):
+  /// a mission faster than this is outside what the model was fitted on.
+  double calibrated_speed_mps = 0.0;
+  /// The base's physical top speed: a mission's max_speed_mps above it is
+  /// never reached. Default the P3-AT's (0.6 m/s, the simulator's and MobileSim's cap).
+  double top_speed_mps = 0.6;
   bool operator==(const Kinematics&) const = default;
 };
 

@@ -59,6 +59,38 @@ struct Branch {
   std::vector<std::size_t> event_robots;
 };
 
+/// Facts the evaluation noticed about where its own model is approximate,
+/// for the approximations check (approximations.hpp). Deduplicated: one
+/// record per distinct situation, whatever the number of branches.
+///
+/// A robot that cannot finish in some branch: which one, in which state,
+/// where (mean true position), and why ("stuck" on its path, "waiting" for a
+/// message nobody will send, "loop" past Budget::max_events).
+struct BlockedRecord {
+  std::size_t robot = 0;
+  std::size_t state = 0;
+  double x_m = 0.0, y_m = 0.0;
+  std::string why;
+  double mass = 0.0;   ///< probability of this situation (summed over branches)
+};
+/// An event where three or more robots could each plausibly fire first: the
+/// order is then a product of pairwise probabilities (an approximation).
+struct RaceRecord {
+  std::vector<std::size_t> robots;
+  std::vector<std::size_t> states;  ///< each robot's state, same order
+};
+/// Robot `robot` entered GoToGuarded state `state` while `teammate` was
+/// driving its own GoToGuarded leg `teammate_state`: the evaluation of each
+/// leg ignores the other (it is not an obstacle), and teammates holding
+/// still are frozen where they stood at the state's start. Legs as segments
+/// from the mean position at entry to the goal.
+struct ConcurrentLegs {
+  std::size_t robot = 0, state = 0;
+  std::size_t teammate = 0, teammate_state = 0;
+  double x0_m = 0.0, y0_m = 0.0, x1_m = 0.0, y1_m = 0.0;     ///< robot's leg
+  double tx0_m = 0.0, ty0_m = 0.0, tx1_m = 0.0, ty1_m = 0.0; ///< teammate's leg (from where it is now)
+};
+
 struct SystemOutcome {
   std::vector<Branch> branches;   ///< weights sum to 1 - pruned_mass - blocked_mass
   double pruned_mass = 0.0;       ///< ordering mass dropped to keep within Budget::max_branches
@@ -69,6 +101,9 @@ struct SystemOutcome {
   double loop_cutoff_mass = 0.0;
   std::size_t subsystems = 0;     ///< TR subsystems evaluated (Def. 10 steps), summed over branches
   std::size_t ordering_splits = 0;  ///< events where more than one robot could plausibly fire first
+  std::vector<BlockedRecord> blocked;          ///< who blocked_mass belongs to
+  std::vector<RaceRecord> races;               ///< events with three or more plausible first robots
+  std::vector<ConcurrentLegs> concurrent_legs; ///< pairs of legs driven at the same time
 };
 
 }  // namespace p3at::verifier

@@ -8,6 +8,7 @@
 
 #include "p3at/common/result.hpp"
 #include "p3at/mission/mission.hpp"
+#include "p3at/verifier/approximations.hpp"
 #include "p3at/verifier/models.hpp"
 #include "p3at/verifier/outcome.hpp"
 
@@ -53,6 +54,22 @@ struct RobotPrediction {
   double final_sd_m = 0.0;                       ///< sqrt(trace(cov)/2)
   double dist_mean_m = 0.0;                      ///< E|true final position - goal| (as vipars validate's)
   double p_radius = 0.0;                         ///< P(r_i <= rmax)
+  double p_blocked = 0.0;                        ///< P(it never reaches a final state)
+  /// False when no evaluated branch has it finish: the figures above are then
+  /// not a prediction (0), and `VerifyResult::blocked` says where it stops.
+  bool finishes = true;
+};
+
+/// A robot that cannot finish in some branches: which, in which state, where.
+struct BlockedRobot {
+  std::size_t robot = 0;
+  std::string name;
+  std::size_t state = 0;
+  std::string state_name;
+  double x_m = 0.0, y_m = 0.0;   ///< mean true position where it stops
+  std::string why;               ///< "stuck" (on its path), "waiting" (for a message nobody sends), "loop"
+  double probability = 0.0;
+  std::string where;             ///< "file:line:column" of the state (locate_in_mission_file), else empty
 };
 
 struct VerifyResult {
@@ -71,7 +88,31 @@ struct VerifyResult {
   double loop_cutoff_mass = 0.0;  ///< SystemOutcome::loop_cutoff_mass
   std::size_t branches = 0;
   std::size_t subsystems = 0;
+  std::vector<BlockedRobot> blocked;          ///< who blocked_mass belongs to
+  /// The model's approximations on this mission (approximations.hpp), and
+  /// whether every one is vouched for. `go` is the probabilities' decision
+  /// alone; decision() combines the two: a GO that is not evaluable is
+  /// "cannot evaluate", never GO.
+  std::vector<Approximation> approximations;
+  bool evaluable = true;
+  /// When an approximation is answered by widening (Treatment::widen): the
+  /// joint probability at Tmax - kWidenTime_s, Rmax - kWidenRadius_m, which
+  /// `go` is decided on instead of p_joint.
+  std::optional<double> p_joint_widened;
 };
+
+enum class Decision { go, no_go, cannot_evaluate };
+/// NO-GO whenever the probabilities say so (a mission predicted to fail is
+/// refused whether or not it is evaluable); else GO only if evaluable.
+inline Decision decision(const VerifyResult& r) {
+  if (!r.go) return Decision::no_go;
+  return r.evaluable ? Decision::go : Decision::cannot_evaluate;
+}
+const char* to_string(Decision d);  ///< "go", "no-go", "cannot-evaluate"
+
+/// Fills the `where` of every approximation and blocked robot from the
+/// mission file's text (the bytes the mission was parsed from).
+void locate_in_mission_file(VerifyResult& result, std::string_view mission_yaml, const std::string& mission_file);
 
 /// Where the team is now, for re-verification during a mission (the launch
 /// gate's in-mission check): the evaluation starts from here instead of from

@@ -11,7 +11,8 @@ inline constexpr int kExitAborted = 3;        ///< aborted during the mission, o
 inline constexpr int kExitGateNoGo = 4;       ///< launch gate: this robot or a teammate said NO-GO
 inline constexpr int kExitGateMismatch = 5;   ///< launch gate: a teammate verified a different mission hash
 inline constexpr int kExitGateSilent = 6;     ///< launch gate: a teammate sent no verdict within --gate-timeout
-inline constexpr int kExitGateCannotRun = 7;  ///< launch gate: no models file, or the verifier cannot evaluate
+inline constexpr int kExitGateCannotRun = 7;  ///< launch gate: no models file, the verifier cannot run, or the
+                                              ///< model does not vouch for the mission (cannot evaluate)
 inline constexpr int kExitGateInDoubt = 8;    ///< launch gate: committed, but the teammates' commitments never came
 
 inline constexpr const char* kExitHelp =
@@ -24,7 +25,8 @@ inline constexpr const char* kExitHelp =
     "  4  NO-GO: this robot's verdict or a teammate's\n"
     "  5  a teammate verified a different mission hash\n"
     "  6  a teammate sent no verdict within --gate-timeout\n"
-    "  7  the gate cannot run: no models file, or the verifier cannot evaluate the mission\n"
+    "  7  the gate cannot run: no models file, or the verifier cannot evaluate the mission (it cannot run, or\n"
+    "     the model does not vouch for one of its approximations: --accept-unvouched to launch anyway)\n"
     "  8  in doubt: this robot committed to launch but never heard its teammates commit; it did not move,\n"
     "     a teammate may have (a lost message; docs/launch-gate.md)";
 

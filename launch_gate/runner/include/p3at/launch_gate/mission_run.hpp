@@ -34,6 +34,14 @@ struct MissionRunOptions {
   std::uint64_t seed = 0;
   double linger_s = 5.0;
   std::uint32_t telemetry_every = 1;
+  /// A teammate silent this long (wall time) during the mission is reported
+  /// and the mission's abort_action taken (docs/executive.md, "Liveness").
+  double teammate_silence_s = 3.0;
+  /// Past Tmax + this (mission time) the mission aborts, saying so; 0 = never.
+  double overtime_s = 30.0;
+  /// A stall longer than this aborts (the firmware watchdog); 0 = never.
+  std::int64_t stall_abort_ms = 2000;
+  bool resume_after_stall = false;
 };
 
 /// Runs it; returns mission_exec's exit status (exit_codes.hpp). `stop`

@@ -1,0 +1,243 @@
+// The verifier's honest output, as an operator sees it (the built vipars
+// binary): on the six kinds of mission of issue 12 (tests/data/honest/),
+// `vipars verify --json` lists the approximations each has, located in the
+// mission file; a mission whose probabilities say GO but whose model is not
+// vouched for is "cannot evaluate" (verify and gate exit 3), unless the
+// operator accepts it; blocked robots are said to be blocked, never
+// "done at 0.0 ± 0.0 s". About 3 s in all.
+#include <doctest/doctest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "p3at/verifier/approximation_table.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int status = -1;
+  std::string out;
+};
+
+std::string vipars() {
+#ifdef P3AT_VIPARS_BIN
+  return P3AT_VIPARS_BIN;
+#else
+  return (fs::read_symlink("/proc/self/exe").parent_path() / "vipars").string();
+#endif
+}
+
+std::string honest(const std::string& mission, const std::string& file) {
+  return std::string(P3AT_SOURCE_DIR) + "/tests/data/honest/" + mission + "/" + file;
+}
+
+Run run(const std::string& args) {
+  Run r;
+  const std::string command = vipars() + " " + args + " 2>/dev/null";
+  FILE* pipe = popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  std::array<char, 4096> buffer{};
+  std::size_t n = 0;
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.out.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+nlohmann::json verify_json(const std::string& mission, const std::string& extra = "") {
+  const Run r = run("verify " + honest(mission, "mission.yaml") + " --models " + honest(mission, "models.yaml") +
+                    " --json " + extra);
+  REQUIRE_MESSAGE(!r.out.empty(), "vipars verify printed nothing for " << mission);
+  return nlohmann::json::parse(r.out);
+}
+
+/// Line `line` (1-based) of the file.
+std::string line_of(const std::string& file, int line) {
+  std::ifstream in(file);
+  std::string text;
+  for (int i = 0; i < line && std::getline(in, text); ++i) {
+  }
+  return text;
+}
+
+/// Every approximation names a real place in the mission file: file:line:col,
+/// the line being the state's entry (its name), the transition's (its source
+/// state) or the robot's max_speed_mps.
+void check_locations(const std::string& mission, const nlohmann::json& approximations) {
+  const std::string file = honest(mission, "mission.yaml");
+  for (const auto& a : approximations) {
+    const std::string where = a.at("where");
+    INFO(mission << ": " << a.dump());
+    REQUIRE(where.rfind(file + ":", 0) == 0);
+    const std::string rest = where.substr(file.size() + 1);
+    const int line = std::stoi(rest.substr(0, rest.find(':')));
+    const int column = std::stoi(rest.substr(rest.find(':') + 1));
+    CHECK(column >= 1);
+    const std::string text = line_of(file, line);
+    const std::string kind = a.at("kind");
+    if (kind.rfind("speed-", 0) == 0) {
+      CHECK(text.find("max_speed_mps") != std::string::npos);
+    } else {
+      const std::string state = a.at("state");
+      CHECK(text.find(state) != std::string::npos);
+    }
+    // The measured error and the vouching come from the one table.
+    CHECK(a.contains("measured_error"));
+    if (a.at("measured_error").is_null()) CHECK(a.at("vouched") == (kind == "speed-calibration-unknown"));
+  }
+}
+
+std::set<std::string> kinds(const nlohmann::json& approximations, bool unvouched_only = false) {
+  std::set<std::string> out;
+  for (const auto& a : approximations) {
+    if (!unvouched_only || !a.at("vouched").get<bool>()) out.insert(a.at("kind").get<std::string>());
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("the table: one row per kind in enum order; vouched iff measured within the bounds, or not refused") {
+  using namespace p3at::verifier;
+  for (std::size_t i = 0; i < kApproximationTable.size(); ++i) {
+    const ApproximationRow& row = kApproximationTable[i];
+    CHECK(static_cast<std::size_t>(row.kind) == i);
+    const bool within = row.measured && row.measured->time <= 0.05 && row.measured->radius <= 0.05 &&
+                        row.measured->joint <= 0.08;
+    CHECK(vouched(row.kind) == (within || row.treatment != Treatment::refuse));
+  }
+}
+
+TEST_CASE("each of issue 12's six mission kinds lists its approximations, located in the mission file") {
+  struct Expect {
+    const char* mission;
+    std::vector<const char*> unvouched;  // at least these kinds, unvouched
+  };
+  const std::vector<Expect> expected{
+      {"five_legs", {"noise-redrawn-strong", "may-get-trapped"}},
+      {"two_speeds", {"speed-above-calibration"}},
+      {"chain_of_four", {"robots-racing", "may-get-trapped"}},
+      {"z_overwatch", {"may-get-trapped", "speed-above-calibration"}},
+      {"meeting", {"teammates-moving-near-path"}},
+      {"patrol_recall", {"message-interrupts-motion", "fsa-loop", "time-position-coupled"}},
+  };
+  for (const Expect& e : expected) {
+    INFO(e.mission);
+    const nlohmann::json j = verify_json(e.mission);
+    REQUIRE(j.contains("approximations"));
+    const std::set<std::string> found = kinds(j["approximations"], true);
+    for (const char* kind : e.unvouched) CHECK_MESSAGE(found.count(kind) == 1, "missing " << kind);
+    CHECK(j["evaluable"] == false);
+    check_locations(e.mission, j["approximations"]);
+    // NO-GO stays NO-GO; a GO by the probabilities becomes cannot-evaluate.
+    const std::string decision = j["decision"];
+    const double decided = j["p_joint_widened"].is_number() ? j["p_joint_widened"].get<double>() : j["p_joint"].get<double>();
+    if (decided >= j["threshold"].get<double>()) CHECK(decision == "cannot-evaluate");
+    else CHECK(decision == "no-go");
+  }
+}
+
+TEST_CASE("patrol recalled mid-leg: verify's P(success) says GO, but it cannot be evaluated; the gate refuses") {
+  const std::string mission = honest("patrol_recall", "mission.yaml");
+  // With Rmax 9.5 m the probabilities say GO (the patroller is predicted to
+  // halt 8.5 m from its goal); the loop and the interruption are unvouched.
+  const std::string models = honest("patrol_recall", "models.yaml") + " --rmax 9.5";
+  const Run verify = run("verify " + mission + " --models " + models);
+  CHECK(verify.status == 3);
+  CHECK(verify.out.find("decision: CANNOT EVALUATE") != std::string::npos);
+  CHECK(verify.out.find("decision: GO") == std::string::npos);
+  CHECK(verify.out.find("UNVOUCHED fsa-loop") != std::string::npos);
+
+  const Run gate = run("gate " + mission + " --models " + models);
+  CHECK(gate.status == 3);
+  CHECK(gate.out.find("CANNOT EVALUATE") != std::string::npos);
+  CHECK(gate.out.find("UNVOUCHED approximation message-interrupts-motion") != std::string::npos);
+
+  const Run accepted = run("gate " + mission + " --models " + models + " --accept-unvouched");
+  CHECK(accepted.status == 0);
+  CHECK(accepted.out.find("GO (operator accepted unvouched approximations)") != std::string::npos);
+
+  // A stricter threshold makes it NO-GO by the probabilities: NO-GO whatever
+  // the approximations (exit 1, not 3), with or without the operator's acceptance.
+  CHECK(run("gate " + mission + " --models " + models + " --tmax 20").status == 1);
+  CHECK(run("gate " + mission + " --models " + models + " --tmax 20 --accept-unvouched").status == 1);
+  // At the mission's own Rmax (1.5 m) the model, which now places the
+  // interrupted patroller mid-leg, says NO-GO: NO-GO stays NO-GO.
+  CHECK(run("gate " + mission + " --models " + honest("patrol_recall", "models.yaml")).status == 1);
+}
+
+TEST_CASE("shipped examples whose kinds are vouched keep their GO / NO-GO") {
+  const std::string root = std::string(P3AT_SOURCE_DIR) + "/examples/";
+  // Bounding Overwatch: NO-GO at its own criteria, GO at looser ones, as before.
+  const std::string bo = root + "bounding_overwatch/mission.yaml --models " + root + "bounding_overwatch/models.yaml";
+  CHECK(run("verify " + bo).status == 1);
+  CHECK(run("verify " + bo + " --tmax 230 --rmax 3.0").status == 0);
+  CHECK(run("gate " + bo + " --tmax 230 --rmax 3.0").status == 0);
+  // The relay (NOISE redrawn within its legs, a vouched kind): GO.
+  const std::string relay = root + "relay/mission.yaml --models " + std::string(P3AT_SOURCE_DIR) +
+                            "/tests/sitl/data/relay_models.yaml";
+  const Run r = run("verify " + relay + " --json");
+  CHECK(r.status == 0);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  CHECK(j["evaluable"] == true);
+  CHECK(kinds(j["approximations"]).count("noise-redrawn-in-leg") == 1);
+  // robot2's leg starts on a message: measured as a shift of the curves, so
+  // the decision is taken at Tmax - 0.5 s, Rmax - 0.02 m (conservative).
+  CHECK(kinds(j["approximations"]).count("leg-entered-on-message") == 1);
+  REQUIRE(j["p_joint_widened"].is_number());
+  CHECK(j["p_joint_widened"].get<double>() <= j["p_joint"].get<double>());
+  // Where the curve is steep the widened answer refuses what the unwidened would launch.
+  const Run steep = run("verify " + relay + " --rmax 0.21 --json");
+  const nlohmann::json s = nlohmann::json::parse(steep.out);
+  CHECK(s["p_joint"].get<double>() >= 0.8);
+  CHECK(s["p_joint_widened"].get<double>() < 0.8);
+  CHECK(steep.status == 1);
+  CHECK(s["failed"].dump().find("decided there, not at Tmax and Rmax") != std::string::npos);
+}
+
+TEST_CASE("a blocked robot is said to be blocked, where, never 'done at 0.0 ± 0.0 s'") {
+  const std::string mission = honest("alcove_pinned", "mission.yaml");
+  const Run r = run("verify " + mission + " --models " + honest("alcove_pinned", "models.yaml"));
+  CHECK(r.status == 1);
+  CHECK(r.out.find("done at 0.0 ± 0.0") == std::string::npos);
+  CHECK(r.out.find("r3: BLOCKED") != std::string::npos);
+  CHECK(r.out.find("in state 'into_alcove' (" + mission + ":") != std::string::npos);
+  const nlohmann::json j = nlohmann::json::parse(
+      run("verify " + mission + " --models " + honest("alcove_pinned", "models.yaml") + " --json").out);
+  bool r3 = false;
+  for (const auto& b : j["blocked"]) {
+    if (b["robot"] == "r3") {
+      r3 = true;
+      CHECK(b["state"] == "into_alcove");
+      CHECK(b["why"] == "stuck");
+      CHECK(b["where"].get<std::string>().rfind(mission + ":", 0) == 0);
+    }
+  }
+  CHECK(r3);
+  for (const auto& robot : j["robots"]) CHECK(robot["finishes"] == false);
+}
+
+TEST_CASE("vipars simulate says why a run timed out, without --verbose: who, in which state, where, why") {
+  const std::string args = "simulate " + honest("alcove_pinned", "mission.yaml") + " --world " +
+                           honest("alcove_pinned", "world.yaml") + " --runs 1 --timeout 150";
+  const nlohmann::json j = nlohmann::json::parse(run(args + " --json").out);
+  const std::string outcome = j["runs"][0]["outcome"];
+  CHECK(outcome.find("timeout (") == 0);
+  CHECK(outcome.find("r3 in 'into_alcove'") != std::string::npos);
+  CHECK(outcome.find("r4 in 'wait' waiting for 'r3_in' from r3") != std::string::npos);
+  for (const auto& robot : j["runs"][0]["robots"]) {
+    if (robot["name"] == "r3") CHECK(robot["reason"].get<std::string>().find("in state 'into_alcove' at (") == 0);
+    if (robot["name"] == "r1") CHECK(robot["reason"] == "");  // finished: nothing to explain
+  }
+  const Run text = run(args);
+  CHECK(text.out.find("1 run(s): timeout (r3 in 'into_alcove'") != std::string::npos);
+}

@@ -1,0 +1,71 @@
+#pragma once
+/// Where a mission is outside what the verifier's model vouches for: each
+/// approximation the model makes on this mission (approximation_table.hpp
+/// lists the kinds and their measured errors), found from the mission, the
+/// models and the evaluation's own notes (outcome.hpp), and located in the
+/// mission file. `verify()` fills VerifyResult::approximations with these;
+/// the gate refuses a mission that is not evaluable (docs/verifier.md).
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "p3at/mission/mission.hpp"
+#include "p3at/verifier/approximation_table.hpp"
+#include "p3at/verifier/models.hpp"
+#include "p3at/verifier/outcome.hpp"
+
+namespace p3at::verifier {
+
+/// The mission-file element an approximation is about.
+enum class MissionElement { robot, max_speed, state, transition };
+
+struct Approximation {
+  ApproximationKind kind = ApproximationKind::noise_redrawn_in_leg;
+  std::size_t robot = 0;                  ///< index into Mission::robots
+  std::string robot_name;
+  std::string state;                      ///< the state's name ("" when about the robot as a whole)
+  MissionElement element = MissionElement::robot;
+  std::size_t index = 0;                  ///< the state's or the transition's index (element state/transition)
+  std::string where;                      ///< "file:line:col" of the element; empty until located
+  std::string detail;                     ///< what was found, in words
+  std::optional<MeasuredError> measured_error;  ///< the kind's row
+  bool vouched = false;                   ///< the kind's row
+};
+
+/// The approximations of `mission` under `models`, given the evaluation's
+/// outcome (races, concurrent legs), sorted by robot, then kind. Not located
+/// (`where` empty): locate_approximations() does that from the file's text.
+std::vector<Approximation> detect_approximations(const mission::Mission& mission, const Models& models,
+                                                 const SystemOutcome& outcome);
+
+/// True when every approximation is vouched for: the verifier's answer is
+/// within its validated bounds.
+bool all_vouched(const std::vector<Approximation>& approximations);
+
+/// The unvouched kinds' names, comma-separated, each once ("" if none).
+std::string unvouched_kinds(const std::vector<Approximation>& approximations);
+
+/// Finds mission elements in the mission file's text (the same bytes the
+/// mission was parsed from; robots, states and transitions in file order, as
+/// the loader keeps them): "file:line:column". Never throws; an element it
+/// cannot find is "file".
+class MissionLocator {
+ public:
+  MissionLocator(std::string_view mission_yaml, std::string mission_file);
+  std::string where(std::size_t robot, MissionElement element, std::size_t index = 0) const;
+
+ private:
+  std::string file_;
+  std::vector<std::string> robots_, speeds_;
+  std::vector<std::vector<std::string>> states_, transitions_;
+};
+
+/// Fills each approximation's `where` with the locator.
+void locate_approximations(std::vector<Approximation>& approximations, const MissionLocator& locator);
+
+const char* to_string(ApproximationKind kind);  ///< the table's name, e.g. "fsa-loop"
+
+}  // namespace p3at::verifier

@@ -1,0 +1,285 @@
+#include "engine/noise_segments.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+
+namespace p3at::verifier::engine {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Successive draws' quadrature directions are turned by the golden angle, so
+// that over many redraws the directions used do not sit on one lattice.
+constexpr double kGoldenAngleRad = 2.399963229728653;
+
+// The clustering's metric: metres, with a heading difference of 1 rad
+// counted as 0.3 m, a speed difference of 1 m/s as 2 m and a turn rate of
+// 1 rad/s as 0.3 m (what each does to where the path goes next, roughly).
+using Features = std::array<double, 5>;
+Features features(const Walker& w) {
+  return {w.q.x_m, w.q.y_m, 0.3 * w.q.theta_rad, 2.0 * w.q.trans_mps, 0.3 * w.q.rot_radps};
+}
+double distance2(const Features& a, const Features& b) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) s += (a[i] - b[i]) * (a[i] - b[i]);
+  return s;
+}
+
+using State5 = Eigen::Matrix<double, 5, 1>;
+using Cov5 = Eigen::Matrix<double, 5, 5>;
+
+/// The part of a walker the restoring map acts on: pose and velocities.
+State5 state_of(const Walker& w) {
+  State5 v;
+  v << w.q.x_m, w.q.y_m, w.q.theta_rad, w.q.trans_mps, w.q.rot_radps;
+  return v;
+}
+
+/// The weighted covariance of the walkers' state_of().
+Cov5 state_cov(const std::vector<Walker>& ws, State5& mean) {
+  double total = 0.0;
+  mean.setZero();
+  for (const Walker& w : ws) {
+    mean += w.weight * state_of(w);
+    total += w.weight;
+  }
+  Cov5 cov = Cov5::Zero();
+  if (!(total > 0.0)) return cov;
+  mean /= total;
+  for (const Walker& w : ws) {
+    const State5 d = state_of(w) - mean;
+    cov += (w.weight / total) * d * d.transpose();
+  }
+  return cov;
+}
+
+Walker merge(const std::vector<const Walker*>& members) {
+  Walker out;
+  double total = 0.0;
+  for (const Walker* m : members) total += m->weight;
+  out.cycles = members.front()->cycles;
+  out.weight = total;
+  out.q = BaseState{};
+  out.before = BaseState{};
+  out.error = ErrorState{};
+  for (const Walker* m : members) {
+    const double f = m->weight / total;
+    out.q.x_m += f * m->q.x_m;
+    out.q.y_m += f * m->q.y_m;
+    out.q.theta_rad += f * m->q.theta_rad;
+    out.q.trans_mps += f * m->q.trans_mps;
+    out.q.rot_radps += f * m->q.rot_radps;
+    out.before.x_m += f * m->before.x_m;
+    out.before.y_m += f * m->before.y_m;
+    out.before.theta_rad += f * m->before.theta_rad;
+    out.before.trans_mps += f * m->before.trans_mps;
+    out.before.rot_radps += f * m->before.rot_radps;
+    out.turned_rad += f * m->turned_rad;
+    out.turned_before_rad += f * m->turned_before_rad;
+    out.error.mean += f * m->error.mean;
+    out.error.cov += f * m->error.cov;
+  }
+  // The members' error means differ mostly because their odometric poses do
+  // (a scale error grows with the distance driven, a heading error with the
+  // turn): that spread is the pose spread, which the merged walkers keep
+  // (see the restoring scale below), and the end of the state regresses it
+  // out (error_given_end). Adding it to the covariance here as well would
+  // count it again at every redraw.
+  return out;
+}
+
+}  // namespace
+
+std::vector<Walker> reduce_walkers(const std::vector<Walker>& walkers, std::size_t keep) {
+  keep = std::max<std::size_t>(keep, 1);
+  if (walkers.size() <= keep) return walkers;
+  const std::size_t n = walkers.size();
+  std::vector<Features> f(n);
+  for (std::size_t i = 0; i < n; ++i) f[i] = features(walkers[i]);
+
+  // Seeds: the heaviest, then repeatedly the walker with the largest
+  // weight × squared distance to its nearest seed (ties: lowest index).
+  std::vector<Features> centres;
+  std::size_t first = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    if (walkers[i].weight > walkers[first].weight) first = i;
+  }
+  centres.push_back(f[first]);
+  std::vector<double> nearest(n, std::numeric_limits<double>::infinity());
+  while (centres.size() < keep) {
+    std::size_t best = n;
+    double best_score = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      nearest[i] = std::min(nearest[i], distance2(f[i], centres.back()));
+      const double score = walkers[i].weight * nearest[i];
+      if (score > best_score) {
+        best_score = score;
+        best = i;
+      }
+    }
+    if (best == n) break;  // every walker sits on a seed already
+    centres.push_back(f[best]);
+  }
+  // Nearest-centre passes (Lloyd), weighted.
+  std::vector<std::size_t> label(n, 0);
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::size_t i = 0; i < n; ++i) {
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t c = 0; c < centres.size(); ++c) {
+        const double d = distance2(f[i], centres[c]);
+        if (d < best) {
+          best = d;
+          label[i] = c;
+        }
+      }
+    }
+    if (pass == 1) break;
+    std::vector<Features> sum(centres.size(), Features{});
+    std::vector<double> mass(centres.size(), 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t d = 0; d < f[i].size(); ++d) sum[label[i]][d] += walkers[i].weight * f[i][d];
+      mass[label[i]] += walkers[i].weight;
+    }
+    for (std::size_t c = 0; c < centres.size(); ++c) {
+      if (mass[c] > 0.0) {
+        for (std::size_t d = 0; d < sum[c].size(); ++d) centres[c][d] = sum[c][d] / mass[c];
+      }
+    }
+  }
+  std::vector<Walker> out;
+  for (std::size_t c = 0; c < centres.size(); ++c) {
+    std::vector<const Walker*> members;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (label[i] == c && walkers[i].weight > 0.0) members.push_back(&walkers[i]);
+    }
+    if (!members.empty()) out.push_back(merge(members));
+  }
+
+  // Restore the spread merging removed (the within-cluster part of the
+  // children's covariance): the clusters' deviations from their mean are
+  // mapped by L_in L_out^-1 (Cholesky factors, a small ridge for degenerate
+  // directions), so their pose-and-velocity covariance is exactly the
+  // children's. (Scaling along the children's principal axes instead, which
+  // ignores the clusters' own correlations, compounded at a redraw every
+  // cycle: the duration's spread came out 3x the simulator's.)
+  State5 mean_in, mean_out;
+  const Cov5 cov_in = state_cov(walkers, mean_in);
+  const Cov5 cov_out = state_cov(out, mean_out);
+  const Cov5 ridge = (1e-14 + 1e-9 * cov_in.trace()) * Cov5::Identity();
+  const Eigen::LLT<Cov5> l_in(cov_in + ridge);
+  const Eigen::LLT<Cov5> l_out(cov_out + ridge);
+  if (l_in.info() != Eigen::Success || l_out.info() != Eigen::Success) return out;
+  const Cov5 lo = l_out.matrixL();
+  const Cov5 map = Cov5(l_in.matrixL()) * lo.inverse();
+  if (!map.allFinite()) return out;
+  for (Walker& w : out) {
+    const State5 d = state_of(w) - mean_out;
+    const State5 moved = map * d - d;
+    w.q.x_m += moved(0);
+    w.q.y_m += moved(1);
+    w.q.theta_rad += moved(2);
+    w.q.trans_mps += moved(3);
+    w.q.rot_radps += moved(4);
+    w.before.x_m += moved(0);
+    w.before.y_m += moved(1);
+    w.before.theta_rad += moved(2);
+  }
+  return out;
+}
+
+NoiseQuadrature noise_quadrature(const PathStepper& stepper, const Walker& start, std::int64_t persistence,
+                                 std::size_t directions, std::size_t keep, std::size_t keep_near, std::size_t cap,
+                                 LegTrajectory* record) {
+  NoiseQuadrature out;
+  if (record != nullptr) record->paths.assign(std::max<std::size_t>(directions, 1), {});
+  directions = std::max<std::size_t>(directions, 1);
+  const std::size_t every = stepper.sample_every();
+  // The mean path: sums of weight × position per sample index.
+  std::vector<double> sx, sy, sw;
+  auto sample = [&](const Walker& w) {
+    if (w.cycles % every != 0) return;
+    const std::size_t i = w.cycles / every;
+    if (sx.size() <= i) {
+      sx.resize(i + 1, 0.0);
+      sy.resize(i + 1, 0.0);
+      sw.resize(i + 1, 0.0);
+    }
+    sx[i] += w.weight * w.q.x_m;
+    sy[i] += w.weight * w.q.y_m;
+    sw[i] += w.weight;
+  };
+
+  const std::size_t length = persistence > 0 ? static_cast<std::size_t>(persistence) : cap + 1;
+  std::vector<Walker> live{start};
+  live.front().weight = 1.0;
+  for (std::size_t segment = 0; !live.empty(); ++segment) {
+    if (segment > 0) ++out.redraws;
+    const std::size_t until = std::min(cap, (segment + 1) * length);
+    std::vector<Walker> children;
+    for (const Walker& parent : live) {
+      for (std::size_t j = 0; j < directions; ++j) {
+        const double angle = 2.0 * kPi * (static_cast<double>(j) + 0.5) / static_cast<double>(directions) +
+                             static_cast<double>(segment) * kGoldenAngleRad;
+        Walker w = parent;
+        w.weight = parent.weight / static_cast<double>(directions);
+        // Recorded until the robot has come to rest for good (a leg waiting
+        // at its goal for a message): beyond the record the pose is held.
+        std::vector<TrajectoryPoint>* trace =
+            (record != nullptr && segment == 0) ? &record->paths[j] : nullptr;
+        for (;;) {
+          if (trace != nullptr) {
+            if (trace->size() >= 2 && at_rest(w.q) && at_rest(trace->back().base)) {
+              trace = nullptr;
+            } else {
+              trace->push_back({w.q, w.error});
+            }
+          }
+          if (const auto exit = stepper.fired(w)) {
+            FinishedPath done{w, *exit, segment, j, 0.0};
+            done.phase_cycles = stepper.settle_phase(done.walker, *exit, &done.crossing_c, &done.step);
+            out.finished.push_back(done);
+            break;
+          }
+          if (w.cycles >= cap) {
+            out.stuck += w.weight;
+            out.stuck_x_m += w.weight * w.q.x_m;
+            out.stuck_y_m += w.weight * w.q.y_m;
+            break;
+          }
+          if (w.cycles >= until) {
+            children.push_back(w);
+            break;
+          }
+          sample(w);
+          stepper.step(w, angle);
+          ++out.cycles_simulated;
+        }
+      }
+    }
+    // Far from the goal and from obstacles the flow is nearly linear in the
+    // pose and `directions` walkers carry its spread; near them (the
+    // slow-down, where a strong NOISE can hold the robot off its goal) the
+    // distribution is shaped by the flow and needs more.
+    const bool near = std::any_of(children.begin(), children.end(), [&](const Walker& w) { return stepper.delicate(w); });
+    live = reduce_walkers(children, near ? keep_near : keep);
+  }
+
+  // Finished paths stay where they ended for the rest of the mean path.
+  for (const FinishedPath& p : out.finished) {
+    for (std::size_t i = (p.walker.cycles + every - 1) / every; i < sx.size(); ++i) {
+      sx[i] += p.walker.weight * p.walker.q.x_m;
+      sy[i] += p.walker.weight * p.walker.q.y_m;
+      sw[i] += p.walker.weight;
+    }
+  }
+  for (std::size_t i = 0; i < sx.size(); ++i) {
+    if (sw[i] > 0.0) out.mean_path.push_back({static_cast<double>(i), sx[i] / sw[i], sy[i] / sw[i]});
+  }
+  return out;
+}
+
+}  // namespace p3at::verifier::engine

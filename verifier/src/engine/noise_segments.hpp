@@ -1,0 +1,71 @@
+#pragma once
+/// NOISE's direction, integrated segment by segment. The executive draws a
+/// uniformly random direction on entering a GoToGuarded state and redraws it
+/// every `persistence` cycles; between draws the flow is deterministic. So
+/// the state's paths form a branching process: at each redraw every path
+/// splits into `directions` equally weighted children (a quadrature of the
+/// uniform angle), each driven deterministically to the next redraw, to its
+/// trigger or to the cycle cap. The children are then reduced to at most
+/// `keep` weighted walkers (`keep_near` where PathStepper::delicate()) (deterministic clustering on pose and velocity,
+/// moment-matched, with the pose covariance of the children restored), so
+/// the cost is about keep × directions paths whatever the number of redraws.
+///
+/// With no redraw before the paths end (persistence at least the leg) this
+/// is exactly the held-direction quadrature: one path per direction.
+/// A path that fires during segment s ends there: the duration's
+/// distribution is the mass firing at each cycle, and a long tail (a robot
+/// held off its goal by a strong NOISE that escapes at some later redraw) is
+/// carried as the mass that is still moving, segment after segment.
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "engine/leg_trajectory.hpp"
+#include "engine/path_stepper.hpp"
+
+namespace p3at::verifier::engine {
+
+/// A path that ended by a self-timed trigger.
+struct FinishedPath {
+  Walker walker;                 ///< at the expected firing (its weight is its probability)
+  std::size_t exit = 0;          ///< the transition that fired
+  std::size_t segment = 0;       ///< the NOISE draw it fired under (0: the first)
+  std::size_t direction = 0;     ///< the quadrature direction of that draw
+  double phase_cycles = 0.0;     ///< settle_phase()'s offset
+  double crossing_c = -1.0;      ///< the crossing's fraction into the last cycle (-1: not crossed by moving toward it)
+  Eigen::Vector3d step = Eigen::Vector3d::Zero();  ///< the last cycle's step before the phase move
+};
+
+struct NoiseQuadrature {
+  std::vector<FinishedPath> finished;
+  double stuck = 0.0;              ///< mass still moving at the cycle cap
+  double stuck_x_m = 0.0;          ///< mass-weighted sum of where the stuck walkers were (divide by stuck)
+  double stuck_y_m = 0.0;
+  std::size_t redraws = 0;         ///< segments after the first that carried mass
+  std::vector<PathSample> mean_path;  ///< the mean odometric position every second (finished paths stay put)
+  std::size_t cycles_simulated = 0;
+};
+
+/// The quadrature of one motion state from `start` (weight 1). For a state
+/// without NOISE pass directions = 1 and persistence 0 (held).
+/// `record`: each direction's pose and error under the FIRST draw (the whole
+/// state when nothing redraws; the caller runs the held quadrature for it
+/// otherwise): pose and
+/// error after every cycle from the entry, until its exit fires or the robot
+/// has come to rest for good (leg_trajectory.hpp; for states a message can
+/// interrupt).
+NoiseQuadrature noise_quadrature(const PathStepper& stepper, const Walker& start, std::int64_t persistence,
+                                 std::size_t directions, std::size_t keep, std::size_t keep_near, std::size_t cap,
+                                 LegTrajectory* record = nullptr);
+
+/// Reduces weighted walkers (all at the same cycle) to at most `keep`: seeds
+/// by weighted farthest point (the heaviest first), two nearest-centre
+/// passes, each cluster moment-matched (pose, velocities, turn, error), then
+/// the clusters' deviations mapped linearly so that the covariance of their
+/// pose and velocities is exactly the children's (merging would otherwise
+/// shrink the spread at every redraw). Deterministic; the total
+/// weight and the weighted mean pose are kept.
+std::vector<Walker> reduce_walkers(const std::vector<Walker>& walkers, std::size_t keep);
+
+}  // namespace p3at::verifier::engine

@@ -1,0 +1,71 @@
+#pragma once
+/// One control cycle of a motion state's flow (the period process Sys' of
+/// the TR subsystem) for one deterministic NOISE path: the executive's own
+/// schemas compute the command from the odometric pose and the sonar
+/// readings the sensor model predicts from the true pose, the base model
+/// ramps toward it, the error model propagates the true pose's error, and
+/// the state's self-timed triggers are checked as the executive checks them.
+/// Shared by the held-direction quadrature and the redrawn-NOISE segment
+/// quadrature (noise_segments.hpp).
+
+#include <cstddef>
+#include <optional>
+
+#include <Eigen/Core>
+
+#include "engine/base_motion.hpp"
+#include "engine/error_state.hpp"
+#include "engine/state_analysis.hpp"
+#include "p3at/executive/behaviors.hpp"
+
+namespace p3at::verifier::engine {
+
+/// A path's state at a cycle boundary.
+struct Walker {
+  BaseState q;                  ///< odometric pose and velocities now
+  BaseState before;             ///< the same one cycle earlier (for the trigger's crossing phase)
+  ErrorState error;             ///< the true pose's error now
+  double turned_rad = 0.0;      ///< odometric turn accumulated since the state's entry
+  double turned_before_rad = 0.0;
+  std::size_t cycles = 0;       ///< cycles since the state's entry
+  double weight = 1.0;          ///< quadrature weight (probability) of this path
+};
+
+class PathStepper {
+ public:
+  PathStepper(const StateContext& context, std::size_t state);
+
+  /// The self-timed exit that holds now (checked from the first cycle on), if any.
+  std::optional<std::size_t> fired(const Walker& w) const;
+  /// Moves the walker's pose to the trigger's expected firing within its
+  /// last cycle (crossing interpolated, firing on average half a cycle
+  /// after it) and returns that offset in cycles, in [-0.5, 0.5]. When the
+  /// trigger was crossed by moving toward it, `crossing_c` is the crossing's
+  /// fraction into the last cycle (else -1) and `step` the last cycle's step
+  /// (x, y, heading) before the move, for settle_phases() (trigger_phase.hpp).
+  double settle_phase(Walker& w, std::size_t transition, double* crossing_c = nullptr,
+                      Eigen::Vector3d* step = nullptr) const;
+  /// One cycle under NOISE direction `noise_angle_rad`.
+  void step(Walker& w, double noise_angle_rad) const;
+
+  /// Where the flow is strongly nonlinear in the pose: within the goal's
+  /// slow-down (dropoff plus half a metre) or within AVOID_OBSTACLES' reach
+  /// of an obstacle. The redrawn-NOISE quadrature keeps more walkers there.
+  bool delicate(const Walker& w) const;
+
+  const mission::GoToGuardedParams* go() const { return go_; }
+  /// Cycles between mean-path samples (one second).
+  std::size_t sample_every() const { return sample_every_; }
+
+ private:
+  const StateContext& ctx_;
+  std::size_t state_;
+  exec::BehaviorConfig config_;
+  const mission::GoToGuardedParams* go_ = nullptr;
+  const mission::SpinParams* spin_ = nullptr;
+  std::size_t sample_every_ = 10;
+  double max_range_m_ = 5.0;
+  double avoid_reach_m_ = 0.0;
+};
+
+}  // namespace p3at::verifier::engine
