@@ -100,20 +100,25 @@ TEST_CASE("baseline: measured + margin for generated missions, the bounds for sh
   MissionResult gen = result("gen_1", 0.10, 0.02, 0.15, 4);
   MissionResult shipped = result("relay", 0.01, 0.01, 0.02, 0);
   shipped.generator_seed.reset();
-  const auto entries = baseline_from({gen, shipped}, Bounds{}, 0.03);
-  REQUIRE(entries.size() == 2);
+  MissionResult noisy = result("concurrent_moves", 0.01, 0.058, 0.02, 0);  // strictly over its bound, by sampling
+  noisy.generator_seed.reset();
+  const auto entries = baseline_from({gen, shipped, noisy}, Bounds{}, 0.03);
+  REQUIRE(entries.size() == 3);
+  CHECK(entries[2].radius == doctest::Approx(0.088));
+  CHECK(entries[2].radius_tolerant == 0.05);
   CHECK(entries[0].time == doctest::Approx(0.13));
   CHECK(entries[0].joint == doctest::Approx(0.18));
   CHECK(entries[0].joint_tolerant == doctest::Approx(0.105));
   CHECK(entries[0].overconfident_go_cells == 7);
-  CHECK(entries[1].time == 0.05);
+  CHECK(entries[1].time == 0.05);           // the bound: measured 0.01 + 0.03 is below it
   CHECK(entries[1].joint == 0.08);
+  CHECK(entries[1].time_tolerant == 0.05);
   CHECK(entries[1].overconfident_go_cells == 0);
 
   const std::string path = (std::filesystem::temp_directory_path() / "p3at_unit_baseline.json").string();
   std::ofstream(path) << baseline_json(entries, "test").dump(2);
   const auto loaded = load_baseline(path);
-  REQUIRE(loaded.size() == 2);
+  REQUIRE(loaded.size() == 3);
   CHECK(loaded[0].joint == doctest::Approx(0.18));
   CHECK(check_baseline({gen, shipped}, loaded).empty());
 
