@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The project's test command: installs what is needed, then builds and runs
 # every test. This is what .ci/run calls.
-#   1. release build: unit and hardware-in-the-loop (sitl) tests
+#   1. release build: unit and hardware-in-the-loop (sitl) tests, and the
+#      accuracy gate (verify against validate, docs/crosscheck.md)
 #   2. the same tests under AddressSanitizer + UndefinedBehaviorSanitizer
 #   3. libFuzzer targets, each for a bounded time (P3AT_FUZZ_SECONDS, default 20;
 #      longer runs locally: P3AT_FUZZ_SECONDS=600 bash scripts/test.sh)
@@ -17,8 +18,8 @@ step() { printf '\n==== %s ====\n' "$*"; }
 
 step "release build"
 bash scripts/build.sh release
-step "release tests (unit, sitl)"
-ctest --test-dir build/release -L 'unit|sitl' --output-on-failure -j "$jobs"
+step "release tests (unit, sitl, accuracy)"
+ctest --test-dir build/release -L 'unit|sitl|accuracy' --output-on-failure -j "$jobs"
 
 step "sanitizer build (ASan + UBSan)"
 bash scripts/build.sh asan

@@ -64,6 +64,7 @@ class Progress {
 
 std::string command_line(const CrosscheckRun& run) {
   std::string c = run.campaign.command_prefix;
+  if (run.from_results) return c + " --from-results --out " + run.campaign.out_dir;
   if (run.first_seed) {
     c += " --seeds " + std::to_string(*run.first_seed) + ":" + std::to_string(*run.last_seed) + " --robots " +
          std::to_string(run.min_robots) + ":" + std::to_string(run.max_robots);
@@ -78,68 +79,10 @@ std::string command_line(const CrosscheckRun& run) {
   return c;
 }
 
-}  // namespace
-
-int run_crosscheck(const CrosscheckRun& run) {
-  std::vector<MissionInput> inputs;
-  try {
-    if (run.first_seed) inputs = generated_inputs(*run.first_seed, *run.last_seed, run.min_robots, run.max_robots);
-    std::vector<MissionInput> more = folder_inputs(run.folders, run.shipped_models);
-    for (MissionInput& m : more) inputs.push_back(std::move(m));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "vipars crosscheck: %s\n", e.what());
-    return kExitBadInput;
-  }
-  if (inputs.empty()) {
-    std::fprintf(stderr, "vipars crosscheck: no missions: give --seeds A:B and/or --missions DIR...\n");
-    return kExitBadInput;
-  }
-  for (std::size_t i = 0; i < inputs.size(); ++i) {
-    for (std::size_t j = 0; j < i; ++j) {
-      if (inputs[i].name == inputs[j].name) {
-        std::fprintf(stderr, "vipars crosscheck: two missions are named '%s' (%s and %s): their folders would collide\n",
-                     inputs[i].name.c_str(), inputs[j].source.c_str(), inputs[i].source.c_str());
-        return kExitBadInput;
-      }
-    }
-  }
-  std::vector<BaselineEntry> baseline;
-  if (!run.baseline.empty()) {
-    try {
-      baseline = load_baseline(run.baseline);
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "vipars crosscheck: %s\n", e.what());
-      return kExitBadInput;
-    }
-  }
-  std::error_code ec;
-  std::filesystem::create_directories(run.campaign.out_dir, ec);
-  if (ec) {
-    std::fprintf(stderr, "vipars crosscheck: cannot create %s: %s\n", run.campaign.out_dir.c_str(), ec.message().c_str());
-    return kExitFailed;
-  }
-
+// Everything after the missions: the summary, JSON, report, baseline.
+int finish(const CrosscheckRun& run, const std::vector<MissionResult>& results, const std::vector<BaselineEntry>& baseline,
+           double wall_s) {
   const Bounds bounds;
-  Progress progress(inputs.size());
-  std::vector<MissionResult> results;
-  const auto t0 = std::chrono::steady_clock::now();
-  for (std::size_t i = 0; i < inputs.size(); ++i) {
-    MissionResult r = run_mission(inputs[i], run.campaign, [&](const std::string& phase, std::uint64_t done, std::uint64_t total) {
-      progress.update(i, inputs[i].name, phase, done, total);
-    });
-    progress.finished(i, r);
-    {
-      // As each mission ends, so that a campaign stopped part-way still leaves its results.
-      std::ofstream partial(std::filesystem::path(run.campaign.out_dir) / "missions.jsonl", i == 0 ? std::ios::trunc : std::ios::app);
-      partial << mission_result_json(r).dump() << "\n";
-    }
-    if (!run.json) {
-      std::printf("%s\n", mission_line(r, bounds).c_str());
-      std::fflush(stdout);
-    }
-    results.push_back(std::move(r));
-  }
-  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const CampaignSummary summary = summarize(results, bounds);
   const std::string command = command_line(run);
 
@@ -206,6 +149,105 @@ int run_crosscheck(const CrosscheckRun& run) {
   std::fprintf(stderr, "vipars crosscheck: missions=%zu runs=%llu wall_s=%.1f\n", results.size(),
                static_cast<unsigned long long>(summary.runs), wall_s);
   return status;
+}
+
+}  // namespace
+
+int run_crosscheck(const CrosscheckRun& run) {
+  if (run.from_results) {
+    // A campaign's missions.jsonl (possibly of a campaign stopped part-way): only the output.
+    std::vector<MissionResult> results;
+    const std::filesystem::path path = std::filesystem::path(run.campaign.out_dir) / "missions.jsonl";
+    std::ifstream in(path);
+    if (!in) {
+      std::fprintf(stderr, "vipars crosscheck: cannot read %s\n", path.string().c_str());
+      return kExitBadInput;
+    }
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n) {
+      if (line.empty()) continue;
+      try {
+        results.push_back(mission_result_from_json(nlohmann::json::parse(line)));
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "vipars crosscheck: %s:%d: not a mission's result (%s)\n", path.string().c_str(), n, e.what());
+        return kExitBadInput;
+      }
+    }
+    if (results.empty()) {
+      std::fprintf(stderr, "vipars crosscheck: %s holds no missions\n", path.string().c_str());
+      return kExitBadInput;
+    }
+    std::vector<BaselineEntry> baseline;
+    if (!run.baseline.empty()) {
+      try {
+        baseline = load_baseline(run.baseline);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "vipars crosscheck: %s\n", e.what());
+        return kExitBadInput;
+      }
+    }
+    return finish(run, results, baseline, 0.0);
+  }
+  std::vector<MissionInput> inputs;
+  try {
+    if (run.first_seed) inputs = generated_inputs(*run.first_seed, *run.last_seed, run.min_robots, run.max_robots);
+    std::vector<MissionInput> more = folder_inputs(run.folders, run.shipped_models);
+    for (MissionInput& m : more) inputs.push_back(std::move(m));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "vipars crosscheck: %s\n", e.what());
+    return kExitBadInput;
+  }
+  if (inputs.empty()) {
+    std::fprintf(stderr, "vipars crosscheck: no missions: give --seeds A:B and/or --missions DIR...\n");
+    return kExitBadInput;
+  }
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (inputs[i].name == inputs[j].name) {
+        std::fprintf(stderr, "vipars crosscheck: two missions are named '%s' (%s and %s): their folders would collide\n",
+                     inputs[i].name.c_str(), inputs[j].source.c_str(), inputs[i].source.c_str());
+        return kExitBadInput;
+      }
+    }
+  }
+  std::vector<BaselineEntry> baseline;
+  if (!run.baseline.empty()) {
+    try {
+      baseline = load_baseline(run.baseline);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "vipars crosscheck: %s\n", e.what());
+      return kExitBadInput;
+    }
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(run.campaign.out_dir, ec);
+  if (ec) {
+    std::fprintf(stderr, "vipars crosscheck: cannot create %s: %s\n", run.campaign.out_dir.c_str(), ec.message().c_str());
+    return kExitFailed;
+  }
+
+  const Bounds bounds;
+  Progress progress(inputs.size());
+  std::vector<MissionResult> results;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    MissionResult r = run_mission(inputs[i], run.campaign, [&](const std::string& phase, std::uint64_t done, std::uint64_t total) {
+      progress.update(i, inputs[i].name, phase, done, total);
+    });
+    progress.finished(i, r);
+    {
+      // As each mission ends, so that a campaign stopped part-way still leaves its results.
+      std::ofstream partial(std::filesystem::path(run.campaign.out_dir) / "missions.jsonl", i == 0 ? std::ios::trunc : std::ios::app);
+      partial << mission_result_json(r).dump() << "\n";
+    }
+    if (!run.json) {
+      std::printf("%s\n", mission_line(r, bounds).c_str());
+      std::fflush(stdout);
+    }
+    results.push_back(std::move(r));
+  }
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return finish(run, results, baseline, wall_s);
 }
 
 }  // namespace p3at::crosscheck

@@ -3,6 +3,7 @@
 
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -137,4 +138,29 @@ TEST_CASE("baseline: measured + margin for generated missions, the bounds for sh
   std::ofstream(path) << "{\"missions\": [{\"name\": 3}]}";
   CHECK_THROWS_AS(load_baseline(path), std::runtime_error);
   std::filesystem::remove(path);
+}
+
+TEST_CASE("JSON: a mission's result reads back as written (missions.jsonl, --from-results)") {
+  MissionResult r = result("gen_9", 0.12, 0.04, 0.2, 3);
+  r.score.time.strict_at_tmax_s = 180.5;
+  r.score.joint.strict_at_rmax_m = 1.25;
+  r.score.overconfident.push_back({180, 1.2, 0.9, 0.6, 0.55, 0.65});
+  r.approximations = {"a", "b"};
+  r.tmax_range = "170:190:0.5";
+  r.reproduce = "vipars crosscheck --seeds 9:9";
+  const MissionResult back = mission_result_from_json(nlohmann::json::parse(mission_result_json(r).dump()));
+  CHECK(back.name == "gen_9");
+  CHECK(back.generator_seed == r.generator_seed);
+  CHECK(back.score.time.strict == 0.12);
+  CHECK(back.score.time.strict_at_tmax_s == 180.5);
+  CHECK(std::isnan(back.score.time.strict_at_rmax_m));
+  CHECK(back.score.joint.strict_at_rmax_m == 1.25);
+  CHECK(back.score.overconfident_go_cells == 3);
+  REQUIRE(back.score.overconfident.size() == 1);
+  CHECK(back.score.overconfident[0].ci_high == 0.65);
+  CHECK(back.approximations == r.approximations);
+  CHECK(back.tmax_range == r.tmax_range);
+  CHECK(back.reproduce == r.reproduce);
+  CHECK(mission_result_json(back).dump() == mission_result_json(r).dump());
+  CHECK_THROWS(mission_result_from_json(nlohmann::json::parse("{\"name\": \"x\"}")));
 }

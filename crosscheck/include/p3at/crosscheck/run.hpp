@@ -23,6 +23,10 @@ struct CrosscheckRun {
   std::string baseline;                                 ///< check every mission against this file (CI gate)
   std::string write_baseline;                           ///< record this campaign's errors (+ margin) here
   double baseline_margin = 0.03;
+  /// Instead of running: the summary, JSON and report of the missions a
+  /// campaign (or several) already wrote to DIR/missions.jsonl, e.g. one
+  /// stopped part-way. campaign.out_dir is that DIR.
+  bool from_results = false;
 };
 
 /// Exit statuses: 0 done (and, with a baseline, every mission within it);
