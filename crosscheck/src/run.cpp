@@ -43,7 +43,8 @@ class Progress {
     std::fprintf(stderr, "\r[%.*s%.*s] %zu/%zu %-14s %s", filled, "##############################", width - filled,
                  "..............................", index + 1, missions_, name.c_str(), phase.c_str());
     if (phase == "validating") std::fprintf(stderr, " %llu/%llu runs", static_cast<unsigned long long>(done), static_cast<unsigned long long>(total));
-    std::fprintf(stderr, ", %.0f s left      ", left);
+    if (frac > 0.01) std::fprintf(stderr, ", %.0f s left", left);
+    std::fprintf(stderr, "      ");
     std::fflush(stderr);
   }
   void finished(std::size_t index, const MissionResult& r) {
