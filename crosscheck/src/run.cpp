@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -117,8 +118,22 @@ int finish(const CrosscheckRun& run, const std::vector<MissionResult>& results, 
         std::printf("  %s: %zu approximation%s\n", r.name.c_str(), r.approximations.size(), r.approximations.size() == 1 ? "" : "s");
       }
     }
-    std::printf("redo one mission: see %s/missions/NAME/commands.txt, e.g.\n  %s\n", run.campaign.out_dir.c_str(),
-                results.front().reproduce.empty() ? command.c_str() : results.front().reproduce.c_str());
+    // The worst failing missions, each with the one command that redoes it alone.
+    std::vector<const MissionResult*> failing;
+    for (const MissionResult& r : results) {
+      if (mission_fails(r, bounds) && !r.reproduce.empty()) failing.push_back(&r);
+    }
+    std::stable_sort(failing.begin(), failing.end(), [](const MissionResult* a, const MissionResult* b) {
+      const auto worst = [](const MissionResult* m) {
+        return std::max({m->score.time.tolerant, m->score.radius.tolerant, m->score.joint.tolerant});
+      };
+      return worst(a) > worst(b);
+    });
+    if (!failing.empty()) std::printf("worst failing missions, each redone alone by:\n");
+    for (std::size_t k = 0; k < failing.size() && k < 10; ++k) {
+      std::printf("  %s: %s\n", failing[k]->name.c_str(), failing[k]->reproduce.c_str());
+    }
+    std::printf("every mission's files and commands: %s/missions/NAME/ (commands.txt)\n", run.campaign.out_dir.c_str());
   }
   if (run.report) {
     ReportOptions ro;
