@@ -25,7 +25,7 @@ std::vector<BaselineEntry> baseline_from(const std::vector<MissionResult>& resul
       e.time_tolerant = lim(r.score.time.tolerant);
       e.radius_tolerant = lim(r.score.radius.tolerant);
       e.joint_tolerant = lim(r.score.joint.tolerant);
-      e.overconfident_go_cells = r.score.overconfident_go_cells + r.score.overconfident_go_cells / 10 + 3;
+      e.overconfident_go_cells = r.score.overconfident_go_cells + r.score.overconfident_go_cells / 10 + 1;
     } else {
       // Shipped missions: within the bounds with the 1 % shift, never an
       // over-confident GO, and strictly no worse than the bound or than
