@@ -13,6 +13,8 @@
 #   gnuplot-nox                       report figures (PNG and SVG)
 #   can-utils busybox-static user-mode-linux   real SocketCAN tests inside a user-mode Linux kernel
 #   python3                           small test drivers (stdlib only)
+#   munge slurmctld slurmd slurm-client   a real single-node Slurm (cluster/slurm-local-up.sh) for the CI test of
+#                                     sharded validation: labs run big campaigns on Slurm (docs/cluster.md)
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
 SUDO=""
@@ -22,6 +24,7 @@ PACKAGES=(
   libeigen3-dev libserialport-dev liblcm-dev liblcm-bin doctest-dev libsodium-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev gnuplot-nox
   can-utils busybox-static user-mode-linux python3 procps iproute2
+  munge slurmctld slurmd slurm-client
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

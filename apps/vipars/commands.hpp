@@ -14,6 +14,7 @@ void register_verify(CLI::App& app, int& exit_status);
 void register_gate(CLI::App& app, int& exit_status);
 void register_calibrate(CLI::App& app, int& exit_status);
 void register_validate(CLI::App& app, int& exit_status);
+void register_merge(CLI::App& app, int& exit_status);
 void register_report(CLI::App& app, int& exit_status);
 void register_generate(CLI::App& app, int& exit_status);
 void register_crosscheck(CLI::App& app, int& exit_status);

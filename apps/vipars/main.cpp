@@ -9,7 +9,7 @@ int main(int argc, char** argv) {
   CLI::App app{"vipars: performance guarantees for multirobot missions.\n"
                "Translate a mission to PARS, verify it against its criteria, gate a launch on the verdict, "
                "simulate it in fast time, calibrate robot models from data, validate the verification "
-               "with simulated trials and report verification against validation."};
+               "with simulated trials (sharded over a cluster and merged) and report verification against validation."};
   app.require_subcommand(1);
   int exit_status = p3at::vipars::kExitOk;
   p3at::vipars::register_translate(app, exit_status);
@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   p3at::vipars::register_simulate(app, exit_status);
   p3at::vipars::register_calibrate(app, exit_status);
   p3at::vipars::register_validate(app, exit_status);
+  p3at::vipars::register_merge(app, exit_status);
   p3at::vipars::register_report(app, exit_status);
   p3at::vipars::register_generate(app, exit_status);
   p3at::vipars::register_crosscheck(app, exit_status);

@@ -1,6 +1,7 @@
 // vipars validate MISSION --world FILE --trials N [--jobs J] [--seed S]
 //   [--tmax S] [--rmax M] [--tmax-range A:B:STEP] [--rmax-range A:B:STEP]
 //   [--region-low P] [--region-high P] [--timeout S] [--json] [--csv FILE]
+//   [--shard I/N --part FILE]
 // The flags; the campaign is p3at_validation's run_validate().
 
 #include <memory>
@@ -32,6 +33,9 @@ void register_validate(CLI::App& app, int& exit_status) {
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print the result as JSON (the keys of `vipars verify --json`)");
   cmd->add_option("--csv", o->csv_file, "Write one row per run to this CSV file");
+  cmd->add_option("--shard", o->shard,
+                  "Make only shard I of N's runs (I from 0), with the seeds they have in the whole campaign");
+  cmd->add_option("--part", o->part_file, "With --shard: write the shard's part here, for vipars merge");
   cmd->callback([o, tmax, rmax, &exit_status] {
     o->tmax_given = tmax->count() > 0;
     o->rmax_given = rmax->count() > 0;

@@ -115,6 +115,7 @@ void TeamProtocol::transmit(const Pending& pending, std::vector<TeamDatagram>& o
   NotificationWire w;
   w.utime_us = utime();
   w.mission_id = config_.mission_id;
+  w.session = session_;
   w.sender = config_.self;
   w.seq = pending.seq;
   w.message = pending.message;
@@ -171,6 +172,8 @@ void TeamProtocol::receive_notification(std::span<const std::uint8_t> bytes, std
     ++stats_.rejected_bad_tag;
     return;
   }
+  if (!same_session(w.session)) return;
+  if (now_us_) peers_[w.sender].last_heard_us = *now_us_;
   if (w.is_ack) {
     handle_ack(w);
     return;
@@ -211,6 +214,7 @@ void TeamProtocol::send_ack(const NotificationWire& notification, std::vector<Te
   NotificationWire ack;
   ack.utime_us = utime();
   ack.mission_id = config_.mission_id;
+  ack.session = session_;
   ack.sender = config_.self;
   ack.message = notification.message;
   ack.is_ack = true;
@@ -220,8 +224,24 @@ void TeamProtocol::send_ack(const NotificationWire& notification, std::vector<Te
   if (bytes) out.push_back({TeamChannel::notify, std::move(bytes.value())});
 }
 
-bool TeamProtocol::admit(const std::string& robot, const std::string& mission_id, bool tag_ok, std::uint64_t seq,
-                         std::optional<std::uint64_t> Peer::*last_seq) {
+bool TeamProtocol::same_session(const std::string& session) {
+  if (session == session_) return true;
+  ++stats_.rejected_other_session;
+  return false;
+}
+
+void TeamProtocol::set_session(const std::string& session) {
+  if (session.empty() || is_lower_hex(session, kSessionHexDigits)) session_ = session;
+}
+
+std::optional<std::int64_t> TeamProtocol::last_heard_us(const std::string& robot) const {
+  const auto it = peers_.find(robot);
+  if (it == peers_.end()) return std::nullopt;
+  return it->second.last_heard_us;
+}
+
+bool TeamProtocol::admit(const std::string& robot, const std::string& mission_id, const std::string* session,
+                         bool tag_ok, std::uint64_t seq, std::optional<std::uint64_t> Peer::*last_seq) {
   if (robot == config_.self) return false;  // our own, looped back by multicast
   if (mission_id != config_.mission_id) {
     ++stats_.rejected_other_mission;
@@ -234,6 +254,10 @@ bool TeamProtocol::admit(const std::string& robot, const std::string& mission_id
   if (!tag_ok) {
     ++stats_.rejected_bad_tag;
     return false;
+  }
+  if (session != nullptr) {
+    if (!same_session(*session)) return false;
+    if (now_us_) peers_[robot].last_heard_us = *now_us_;
   }
   auto& last = peers_[robot].*last_seq;
   // Only a newer message replaces the one we hold: an older one is stale
@@ -268,7 +292,7 @@ void TeamProtocol::receive_status(std::span<const std::uint8_t> bytes) {
     return;
   }
   const StatusWire& w = decoded->wire;
-  if (!admit(w.status.robot, w.mission_id, decoded->tag_ok, w.seq, &Peer::last_status_seq)) return;
+  if (!admit(w.status.robot, w.mission_id, &w.session, decoded->tag_ok, w.seq, &Peer::last_status_seq)) return;
   hold(teammate_status_, w.status.robot, w.status);
 }
 
@@ -279,7 +303,7 @@ void TeamProtocol::receive_verdict(std::span<const std::uint8_t> bytes) {
     return;
   }
   const VerdictWire& w = decoded->wire;
-  if (!admit(w.verdict.robot, w.mission_id, decoded->tag_ok, w.seq, &Peer::last_verdict_seq)) return;
+  if (!admit(w.verdict.robot, w.mission_id, nullptr, decoded->tag_ok, w.seq, &Peer::last_verdict_seq)) return;
   ++stats_.verdicts_accepted;
   hold(teammate_verdicts_, w.verdict.robot, w.verdict);
 }
@@ -291,7 +315,7 @@ void TeamProtocol::receive_telemetry(std::span<const std::uint8_t> bytes) {
     return;
   }
   const TelemetryWire& w = decoded->wire;
-  if (!admit(w.telemetry.robot, w.mission_id, decoded->tag_ok, w.seq, &Peer::last_telemetry_seq)) return;
+  if (!admit(w.telemetry.robot, w.mission_id, &w.session, decoded->tag_ok, w.seq, &Peer::last_telemetry_seq)) return;
   ++stats_.telemetry_accepted;
   hold(teammate_telemetry_, w.telemetry.robot, w.telemetry);
 }
@@ -300,6 +324,7 @@ Result<TeamDatagram> TeamProtocol::telemetry(const Telemetry& telemetry) {
   TelemetryWire w;
   w.utime_us = utime();
   w.mission_id = config_.mission_id;
+  w.session = session_;
   w.seq = next_telemetry_seq_++;
   w.telemetry = telemetry;
   w.telemetry.robot = config_.self;
@@ -313,6 +338,7 @@ Result<TeamDatagram> TeamProtocol::status(const TeamStatus& status) {
   StatusWire w;
   w.utime_us = utime();
   w.mission_id = config_.mission_id;
+  w.session = session_;
   w.seq = next_status_seq_++;
   w.status.robot = config_.self;
   w.status.phase = cut(status.phase);

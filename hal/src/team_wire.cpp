@@ -22,13 +22,9 @@ namespace {
 
 constexpr std::uint64_t kMaxWireUnsigned = static_cast<std::uint64_t>(INT64_MAX);
 
-bool is_mission_hash(const std::string& text) {
-  if (text.size() != kMissionHashHexDigits) return false;
-  for (const char c : text) {
-    if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'))) return false;
-  }
-  return true;
-}
+bool is_mission_hash(const std::string& text) { return is_lower_hex(text, kMissionHashHexDigits); }
+
+bool is_session(const std::string& text) { return text.empty() || is_lower_hex(text, kSessionHexDigits); }
 
 bool all_finite(std::initializer_list<double> values) {
   for (const double v : values) {
@@ -122,6 +118,14 @@ bool decode_checked(std::span<const std::uint8_t> bytes, bool (*layout_ok)(std::
 
 }  // namespace
 
+bool is_lower_hex(std::string_view text, std::size_t digits) {
+  if (text.size() != digits) return false;
+  for (const char c : text) {
+    if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'))) return false;
+  }
+  return true;
+}
+
 std::string_view channel_name(TeamChannel channel) {
   switch (channel) {
     case TeamChannel::notify: return kNotifyChannel;
@@ -148,6 +152,7 @@ Result<std::vector<std::uint8_t>> encode_notification(const NotificationWire& wi
   check.text("ack_sender", wire.ack_sender, kMaxTeamNameBytes);
   check.count("seq", wire.seq);
   check.count("ack_seq", wire.ack_seq);
+  check.condition(is_session(wire.session), "session is neither empty nor 64 lowercase hexadecimal digits");
   check.condition(wire.recipients.size() <= kMaxTeamRecipients, "more than 32 recipients");
   for (const auto& r : wire.recipients) check.text("recipient", r, kMaxTeamNameBytes);
   if (auto s = check.result(); !s) return s.error();
@@ -155,6 +160,7 @@ Result<std::vector<std::uint8_t>> encode_notification(const NotificationWire& wi
   p3at_lcm::notification_t msg;
   msg.utime = wire.utime_us;
   msg.mission_id = wire.mission_id;
+  msg.session = wire.session;
   msg.sender = wire.sender;
   msg.seq = static_cast<std::int64_t>(wire.seq);
   msg.message = wire.message;
@@ -175,11 +181,13 @@ Result<std::vector<std::uint8_t>> encode_status(const StatusWire& wire, const Te
   check.text("reason", wire.status.reason, kMaxTeamTextBytes);
   check.count("seq", wire.seq);
   check.condition(std::isfinite(wire.status.p_success), "p_success is not finite");
+  check.condition(is_session(wire.session), "session is neither empty nor 64 lowercase hexadecimal digits");
   if (auto s = check.result(); !s) return s.error();
 
   p3at_lcm::mission_status_t msg;
   msg.utime = wire.utime_us;
   msg.mission_id = wire.mission_id;
+  msg.session = wire.session;
   msg.robot = wire.status.robot;
   msg.seq = static_cast<std::int64_t>(wire.seq);
   msg.phase = wire.status.phase;
@@ -199,11 +207,13 @@ Result<std::vector<std::uint8_t>> encode_telemetry(const TelemetryWire& wire, co
   check.count("cycles", t.cycles);
   check.count("overruns", t.overruns);
   check.count("missed_updates", t.missed_updates);
+  check.condition(is_session(wire.session), "session is neither empty nor 64 lowercase hexadecimal digits");
   if (auto s = check.result(); !s) return s.error();
 
   p3at_lcm::telemetry_t msg;
   msg.utime = wire.utime_us;
   msg.mission_id = wire.mission_id;
+  msg.session = wire.session;
   msg.robot = t.robot;
   msg.seq = static_cast<std::int64_t>(wire.seq);
   msg.state = t.state;
@@ -230,6 +240,13 @@ Result<std::vector<std::uint8_t>> encode_verdict(const VerdictWire& wire, const 
   check.condition(is_mission_hash(v.mission_hash), "mission_hash is not 64 lowercase hexadecimal digits");
   check.condition(all_finite({v.p_time, v.p_radius, v.p_joint, v.threshold, v.tmax_s, v.rmax_m}),
                   "a probability or criterion is not finite");
+  check.condition(is_lower_hex(v.nonce, kGateNonceHexDigits), "nonce is not 32 lowercase hexadecimal digits");
+  check.condition(is_session(v.session), "session is neither empty nor 64 lowercase hexadecimal digits");
+  check.condition(v.heard.size() <= kMaxTeamRecipients, "more than 32 heard nonces");
+  for (const HeardNonce& h : v.heard) {
+    check.text("heard robot", h.robot, kMaxTeamNameBytes);
+    check.condition(is_lower_hex(h.nonce, kGateNonceHexDigits), "a heard nonce is not 32 lowercase hexadecimal digits");
+  }
   if (auto s = check.result(); !s) return s.error();
 
   p3at_lcm::gate_verdict_t msg;
@@ -246,6 +263,13 @@ Result<std::vector<std::uint8_t>> encode_verdict(const VerdictWire& wire, const 
   msg.tmax_s = v.tmax_s;
   msg.rmax_m = v.rmax_m;
   msg.detail = v.detail;
+  msg.nonce = v.nonce;
+  msg.session = v.session;
+  msg.num_heard = static_cast<std::int16_t>(v.heard.size());
+  for (const HeardNonce& h : v.heard) {
+    msg.heard_robot.push_back(h.robot);
+    msg.heard_nonce.push_back(h.nonce);
+  }
   return encode_tagged(std::move(msg), key);
 }
 
@@ -254,10 +278,12 @@ Result<Verified<NotificationWire>> decode_notification(std::span<const std::uint
   if (!decode_checked(bytes, &wire_check::notification_layout_ok, msg)) {
     return malformed("notification", "not a well-formed p3at_lcm.notification_t");
   }
+  if (!is_session(msg.session)) return malformed("notification", "session is not empty or 64 lowercase hex digits");
   Verified<NotificationWire> out;
   NotificationWire& w = out.wire;
   w.utime_us = msg.utime;
   w.mission_id = msg.mission_id;
+  w.session = msg.session;
   w.sender = msg.sender;
   w.seq = static_cast<std::uint64_t>(msg.seq);
   w.message = msg.message;
@@ -275,10 +301,12 @@ Result<Verified<StatusWire>> decode_status(std::span<const std::uint8_t> bytes, 
     return malformed("status", "not a well-formed p3at_lcm.mission_status_t");
   }
   if (!std::isfinite(msg.p_success)) return malformed("status", "p_success is not finite");
+  if (!is_session(msg.session)) return malformed("status", "session is not empty or 64 lowercase hex digits");
   Verified<StatusWire> out;
   StatusWire& w = out.wire;
   w.utime_us = msg.utime;
   w.mission_id = msg.mission_id;
+  w.session = msg.session;
   w.seq = static_cast<std::uint64_t>(msg.seq);
   w.status.robot = msg.robot;
   w.status.phase = msg.phase;
@@ -294,11 +322,13 @@ Result<Verified<TelemetryWire>> decode_telemetry(std::span<const std::uint8_t> b
   if (!decode_checked(bytes, &wire_check::telemetry_layout_ok, msg)) {
     return malformed("telemetry", "not a well-formed p3at_lcm.telemetry_t");
   }
+  if (!is_session(msg.session)) return malformed("telemetry", "session is not empty or 64 lowercase hex digits");
   Verified<TelemetryWire> out;
   TelemetryWire& w = out.wire;
   Telemetry& t = w.telemetry;
   w.utime_us = msg.utime;
   w.mission_id = msg.mission_id;
+  w.session = msg.session;
   w.seq = static_cast<std::uint64_t>(msg.seq);
   t.robot = msg.robot;
   t.state = msg.state;
@@ -329,6 +359,11 @@ Result<Verified<VerdictWire>> decode_verdict(std::span<const std::uint8_t> bytes
   if (!all_finite({msg.p_time, msg.p_radius, msg.p_joint, msg.threshold, msg.tmax_s, msg.rmax_m})) {
     return malformed("gate verdict", "a probability or criterion is not finite");
   }
+  if (!is_lower_hex(msg.nonce, kGateNonceHexDigits)) return malformed("gate verdict", "nonce is not 32 lowercase hex digits");
+  if (!is_session(msg.session)) return malformed("gate verdict", "session is not empty or 64 lowercase hex digits");
+  for (const std::string& n : msg.heard_nonce) {
+    if (!is_lower_hex(n, kGateNonceHexDigits)) return malformed("gate verdict", "a heard nonce is not 32 lowercase hex digits");
+  }
   Verified<VerdictWire> out;
   VerdictWire& w = out.wire;
   GateVerdict& v = w.verdict;
@@ -345,6 +380,9 @@ Result<Verified<VerdictWire>> decode_verdict(std::span<const std::uint8_t> bytes
   v.tmax_s = msg.tmax_s;
   v.rmax_m = msg.rmax_m;
   v.detail = msg.detail;
+  v.nonce = msg.nonce;
+  v.session = msg.session;
+  for (std::size_t i = 0; i < msg.heard_robot.size(); ++i) v.heard.push_back({msg.heard_robot[i], msg.heard_nonce[i]});
   out.tag_ok = tag_verifies(std::move(msg), key);
   return out;
 }

@@ -104,6 +104,7 @@ bool notification_layout_ok(std::span<const std::uint8_t> bytes, std::int64_t fi
   r.fingerprint(fingerprint);
   r.i64();  // utime
   r.string(kMaxTeamNameBytes);     // mission_id
+  r.string(kSessionHexDigits);     // session (its digits are checked after decoding)
   r.string(kMaxTeamNameBytes);     // sender
   r.non_negative_i64();            // seq
   r.string(kMaxTeamMessageBytes);  // message
@@ -120,6 +121,7 @@ bool status_layout_ok(std::span<const std::uint8_t> bytes, std::int64_t fingerpr
   r.fingerprint(fingerprint);
   r.i64();                       // utime
   r.string(kMaxTeamNameBytes);   // mission_id
+  r.string(kSessionHexDigits);   // session
   r.string(kMaxTeamNameBytes);   // robot
   r.non_negative_i64();          // seq
   r.string(kMaxTeamTextBytes);   // phase
@@ -135,6 +137,7 @@ bool telemetry_layout_ok(std::span<const std::uint8_t> bytes, std::int64_t finge
   r.fingerprint(fingerprint);
   r.i64();                       // utime
   r.string(kMaxTeamNameBytes);   // mission_id
+  r.string(kSessionHexDigits);   // session
   r.string(kMaxTeamNameBytes);   // robot
   r.non_negative_i64();          // seq
   r.string(kMaxTeamTextBytes);   // state
@@ -159,6 +162,14 @@ bool verdict_layout_ok(std::span<const std::uint8_t> bytes, std::int64_t fingerp
   r.string(kMaxTeamNameBytes);       // decision (its value is checked after decoding)
   r.skip_doubles(6);                 // p_time, p_radius, p_joint, threshold, tmax_s, rmax_m
   r.string(kMaxTeamTextBytes);       // detail
+  r.string(kGateNonceHexDigits);     // nonce (digits checked after decoding)
+  r.string(kSessionHexDigits);       // session
+  // num_heard, then as many robot names and as many nonces (lcm-gen's layout
+  // for two arrays sized by one count)
+  const std::int16_t heard = r.i16();
+  if (heard < 0 || static_cast<std::size_t>(heard) > kMaxTeamRecipients) return false;
+  for (std::int16_t i = 0; i < heard; ++i) r.string(kMaxTeamNameBytes);
+  for (std::int16_t i = 0; i < heard; ++i) r.string(kGateNonceHexDigits);
   r.tag();
   return r.at_end();
 }

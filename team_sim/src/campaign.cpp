@@ -51,7 +51,8 @@ std::vector<RunResult> run_campaign(const TeamScenario& scenario, const Campaign
       const std::uint64_t i = next.fetch_add(1);
       if (i >= options.runs) break;
       try {
-        results[i] = scenario.run(i, run_seed(options.seed, i), run_options);
+        const std::uint64_t run = options.first_run + i;
+        results[i] = scenario.run(run, run_seed(options.seed, run), run_options);
       } catch (...) {
         const std::lock_guard lock(mutex);
         if (!error) error = std::current_exception();

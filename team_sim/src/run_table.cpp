@@ -26,8 +26,14 @@ std::string fixed(double value, int decimals) {
 }  // namespace
 
 std::string csv_header(const mission::Mission& mission) {
+  std::vector<std::string> names;
+  for (const auto& r : mission.robots) names.push_back(r.name);
+  return csv_header(names);
+}
+
+std::string csv_header(const std::vector<std::string>& robot_names) {
   std::string h = "run,seed,outcome,time_s";
-  for (const auto& r : mission.robots) h += ",dist_" + r.name + "_m";
+  for (const auto& name : robot_names) h += ",dist_" + name + "_m";
   return h + ",closest_approach_m";
 }
 

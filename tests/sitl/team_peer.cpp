@@ -26,6 +26,7 @@
 #include <csignal>
 #include <cctype>
 #include <optional>
+#include <random>
 #include <cstdio>
 #include <sstream>
 #include <string>
@@ -106,7 +107,12 @@ int run(const RunOptions& o) {
       std::fprintf(stderr, "team_peer: --verdict must be GO, NO-GO or OVERRIDE\n");
       return 1;
     }
-    verdict = p3at::hal::GateVerdict{o.name, o.hash, *decision, 0.99, 0.99, 0.99, 0.8, 60.0, 0.5, "team_peer"};
+    verdict = p3at::hal::GateVerdict{o.name, o.hash, *decision, 0.99, 0.99, 0.99, 0.8, 60.0, 0.5, "team_peer", {}, {}, {}};
+    // A fresh nonce, as a real robot's gate draws one (a test tool: std::random_device is enough).
+    std::random_device rd;
+    char hex[33];
+    for (int i = 0; i < 16; ++i) std::snprintf(hex + 2 * i, 3, "%02x", rd() & 0xffu);
+    verdict->nonce = std::string(hex, 32);
   }
 
   p3at::hal::SteadyClock clock;

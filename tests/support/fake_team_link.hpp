@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -89,8 +90,17 @@ class FakeTeamLink final : public hal::TeamLink {
   const std::vector<hal::GateVerdict>& teammate_verdicts() const override { return verdicts_; }
   const std::vector<hal::Telemetry>& teammate_telemetry() const override { return telemetry_; }
   const hal::TeamLinkStats& stats() const override { return stats_; }
+  void set_session(const std::string& session) override { session_ = session; }
+  const std::string& session() const override { return session_; }
+  std::optional<std::int64_t> last_heard_us(const std::string& robot) const override {
+    const auto it = last_heard_.find(robot);
+    if (it == last_heard_.end()) return std::nullopt;
+    return it->second;
+  }
 
   // ---- test controls
+  /// Sets when `robot` was last heard from (liveness tests).
+  void set_last_heard(const std::string& robot, std::int64_t at_us) { last_heard_[robot] = at_us; }
   /// Queues a notification for the next poll(), as if `sender` had sent it.
   void deliver(const std::string& sender, const std::string& message, std::uint64_t seq = 1) {
     inbox_.push_back(Incoming{hal::TeamNotification{sender, message, seq}, nullptr});
@@ -112,6 +122,7 @@ class FakeTeamLink final : public hal::TeamLink {
   /// Replaces (or adds) a teammate's latest telemetry.
   void set_teammate_telemetry(const hal::Telemetry& telemetry) { replace_or_add(telemetry_, telemetry); }
   const std::string& self() const { return self_; }
+  hal::TeamLinkStats& stats_for_test() { return stats_; }
 
   bool auto_ack = true;
   bool fail_notify = false;
@@ -149,6 +160,8 @@ class FakeTeamLink final : public hal::TeamLink {
   std::vector<hal::Telemetry> telemetry_;
   std::uint64_t next_seq_ = 1;
   hal::TeamLinkStats stats_;
+  std::string session_;
+  std::map<std::string, std::int64_t> last_heard_;
 };
 
 }  // namespace p3at::test

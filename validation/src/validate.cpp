@@ -1,12 +1,14 @@
 // vipars validate MISSION --world FILE --trials N [--jobs J] [--seed S]
 //   [--tmax S] [--rmax M] [--tmax-range A:B:STEP] [--rmax-range A:B:STEP]
 //   [--region-low P] [--region-high P] [--timeout S] [--json] [--csv FILE]
+//   [--shard I/N --part FILE]
 // (the flags: apps/vipars/validate_cli.cpp; the run: here).
 // The validation campaign (the seed paper's 100 real trials, in fast time):
 // the real executive against the simulated hardware, N independent runs on J
 // threads, and the fraction of runs that met the criteria, on the same
 // quantities and grid as `vipars verify`, with 95 % Wilson intervals.
-// docs/validation.md.
+// docs/validation.md. With --shard, only shard I of N's runs, written as a
+// part for `vipars merge` (docs/cluster.md).
 
 #include <unistd.h>
 
@@ -14,47 +16,35 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
-#include <iostream>
-#include <map>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
 
+#include "campaign_output.hpp"
 #include "p3at/common/vipars_exit.hpp"
+#include "p3at/launch_gate/mission_hash.hpp"
 #include "p3at/protocols/mission/loader.hpp"
 #include "p3at/validation/validate.hpp"
 #include "p3at/sim/world_config.hpp"
 #include "p3at/team_sim/campaign.hpp"
+#include "p3at/team_sim/campaign_part.hpp"
 #include "p3at/team_sim/empirical.hpp"
 #include "p3at/team_sim/run_table.hpp"
 #include "p3at/team_sim/team_run.hpp"
 #include "p3at/validation/range_arg.hpp"
-#include "p3at/validation/validation_json.hpp"
 
 namespace p3at::vipars {
 namespace {
-
-using Json = nlohmann::ordered_json;  // keys in the documented order
 
 // Every run's result is kept (a few hundred bytes) until the report: 1e6 runs
 // stay well under a gigabyte, and take hours anyway.
 constexpr std::uint64_t kMaxTrials = 1'000'000;
 constexpr unsigned kMaxJobs = 1024;
-
-
-// Everything a report needs, computed once.
-struct Report {
-  std::string mission_name;
-  double threshold = 0.0;
-  team_sim::EmpiricalPoint point;
-  std::optional<team_sim::EmpiricalGrid> grid;
-  std::vector<std::pair<std::string, std::uint64_t>> failures;  // outcome, count; most frequent first
-};
 
 int bad_input(const std::string& message) {
   std::fprintf(stderr, "vipars validate: %s\n", message.c_str());
@@ -74,33 +64,74 @@ std::optional<std::string> check_options(const ValidateOptions& o) {
     return "--region-low/--region-high: expected 0 <= low <= high <= 1";
   }
   if (!(o.timeout_s > 0.0 && o.timeout_s <= 1e6)) return "--timeout: expected simulated seconds in (0, 1e6]";
+  if (o.shard.empty() != o.part_file.empty()) return "--shard and --part: expected both or neither";
+  if (!o.shard.empty() && (o.json || !o.csv_file.empty())) {
+    return "--shard: a shard writes its part only; give --json and --csv to vipars merge";
+  }
   return std::nullopt;
 }
 
-// Outcomes of the failed runs, grouped; most frequent first, then by text,
-// so the report is the same whatever order the runs finished in.
-std::vector<std::pair<std::string, std::uint64_t>> group_failures(const std::vector<team_sim::RunResult>& runs) {
-  std::map<std::string, std::uint64_t> counts;
-  for (const auto& r : runs) {
-    if (!r.success()) ++counts[r.outcome];
+// "job NAME ARRAYID_TASK" inside a Slurm job array task (or "job NAME ID" in
+// a plain job), so a shard's log lines say which job they are; empty elsewhere.
+std::string slurm_job_label() {
+  const char* name = std::getenv("SLURM_JOB_NAME");
+  const char* array_job = std::getenv("SLURM_ARRAY_JOB_ID");
+  const char* task = std::getenv("SLURM_ARRAY_TASK_ID");
+  const char* job = std::getenv("SLURM_JOB_ID");
+  std::string id;
+  if (array_job && task) {
+    id = std::string(array_job) + "_" + task;
+  } else if (job) {
+    id = job;
+  } else {
+    return {};
   }
-  std::vector<std::pair<std::string, std::uint64_t>> sorted(counts.begin(), counts.end());
-  std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
-  return sorted;
+  return "job " + std::string(name ? name : "?") + " " + id;
 }
 
-// The per-run table: run_table's columns plus each robot's final phase
-// ("finished", "aborted", "running" when the run timed out).
-std::string validation_csv_header(const mission::Mission& mission) {
-  std::string header = team_sim::csv_header(mission);
-  for (const auto& r : mission.robots) header += ",phase_" + r.name;
-  return header;
-}
+// A shard's progress in its log (not a terminal): a line at every tenth of
+// its runs and at least once a minute, never more often than every 2 s, and
+// the last one when it is done. The shard script shows the latest in the
+// job's comment (squeue %k).
+class ShardProgressLog {
+ public:
+  ShardProgressLog(std::string shard, std::string job)
+      : prefix_("vipars validate: shard " + shard + (job.empty() ? "" : " (" + job + ")") + ": "),
+        start_(std::chrono::steady_clock::now()), last_(start_) {}
 
-std::string validation_csv_row(const team_sim::RunResult& run) {
-  std::string row = team_sim::csv_row(run);
-  for (const auto& r : run.robots) row += "," + r.phase;
-  return row;
+  void update(std::uint64_t done, std::uint64_t total) {
+    const auto now = std::chrono::steady_clock::now();
+    const double since_last_s = std::chrono::duration<double>(now - last_).count();
+    const std::uint64_t tenth = done * 10 / std::max<std::uint64_t>(total, 1);
+    const bool finished = done == total;
+    if (!finished && since_last_s < 2.0) return;
+    if (!finished && tenth <= last_tenth_ && since_last_s < 60.0) return;
+    last_ = now;
+    last_tenth_ = tenth;
+    const double secs = std::chrono::duration<double>(now - start_).count();
+    std::fprintf(stderr, "%s%llu/%llu runs (%.0f%%), %.1f runs/s\n", prefix_.c_str(),
+                 static_cast<unsigned long long>(done), static_cast<unsigned long long>(total),
+                 100.0 * static_cast<double>(done) / static_cast<double>(std::max<std::uint64_t>(total, 1)),
+                 secs > 0 ? static_cast<double>(done) / secs : 0.0);
+    std::fflush(stderr);
+  }
+
+ private:
+  std::string prefix_;
+  std::chrono::steady_clock::time_point start_, last_;
+  std::uint64_t last_tenth_ = 0;
+};
+
+// The content hash a part carries: the launch gate's mission_content_hash
+// over the mission file's bytes and the world file's bytes (in the models
+// file's place; the world's walls are in its bytes). Parts whose hashes
+// differ were made from different files and never merge.
+Result<std::string> campaign_content_hash(const std::string& mission_file, const std::string& world_file) {
+  auto mission_bytes = gate::read_file_bytes(mission_file);
+  if (!mission_bytes) return mission_bytes.error();
+  auto world_bytes = gate::read_file_bytes(world_file);
+  if (!world_bytes) return world_bytes.error();
+  return gate::mission_content_hash(*mission_bytes, *world_bytes, {});
 }
 
 // Progress on a terminal: a bar, runs/s and the time left, redrawn in place.
@@ -138,112 +169,63 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_;
 };
 
-Json report_to_json(const Report& r, const ValidateOptions& o) {
-  ValidationSummary summary;
-  summary.mission_name = r.mission_name;
-  summary.threshold = r.threshold;
-  summary.point = &r.point;
-  summary.grid = r.grid ? &*r.grid : nullptr;
-  summary.region_low = o.region_low;
-  summary.region_high = o.region_high;
-  summary.seed = o.seed;
-  summary.world_file = o.world_file;
-  summary.mission_file = o.mission_file;
-  return validation_json(summary);
-}
-
-// ---- text ----
-
-std::string number(double value) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", value);
-  return buf;
-}
-
-void print_estimate(const std::string& label, const team_sim::Estimate& e) {
-  std::printf("  %-28s %.3f  [%.3f, %.3f]  (%llu/%llu)\n", label.c_str(), e.p, e.ci_low, e.ci_high,
-              static_cast<unsigned long long>(e.count), static_cast<unsigned long long>(e.runs));
-}
-
-void print_grid(const team_sim::EmpiricalGrid& g, const ValidateOptions& o) {
-  std::printf("\nP(t <= tmax and every r <= rmax): rows tmax (s), columns rmax (m)\n");
-  std::printf("%8s %5s |", "tmax", "P(t)");
-  for (double r : g.rmax) std::printf(" %5s", number(r).c_str());
-  std::printf("\n");
-  for (std::size_t a = 0; a < g.tmax.size(); ++a) {
-    std::printf("%8s %5.2f |", number(g.tmax[a]).c_str(), g.time[a].p);
-    for (const auto& e : g.joint[a]) std::printf(" %5.2f", e.p);
-    std::printf("\n");
-  }
-  std::printf("%8s %5s |", "P(r)", "");
-  for (const auto& e : g.radius) std::printf(" %5.2f", e.p);
-  std::printf("\n\nregions, columns rmax %s .. %s m as above: '-' unsuccessful (P < %g), '?' uncertain, "
-              "'+' successful (P >= %g)\n",
-              g.rmax.empty() ? "" : number(g.rmax.front()).c_str(), g.rmax.empty() ? "" : number(g.rmax.back()).c_str(),
-              o.region_low, o.region_high);
-  for (std::size_t a = 0; a < g.tmax.size(); ++a) {
-    std::printf("%8s  ", number(g.tmax[a]).c_str());
-    for (const auto& e : g.joint[a]) {
-      switch (team_sim::classify(e.p, o.region_low, o.region_high)) {
-        case team_sim::Region::unsuccessful: std::printf("-"); break;
-        case team_sim::Region::uncertain: std::printf("?"); break;
-        case team_sim::Region::successful: std::printf("+"); break;
-      }
-    }
-    std::printf("\n");
-  }
-}
-
-void print_text(const Report& r, const ValidateOptions& o) {
-  const auto& p = r.point;
-  std::printf("validation of %s: %llu runs from seed %llu, %llu failed\n", r.mission_name.c_str(),
-              static_cast<unsigned long long>(p.runs), static_cast<unsigned long long>(o.seed),
-              static_cast<unsigned long long>(p.failed_runs));
-  for (const auto& [outcome, count] : r.failures) {
-    std::printf("  %llu x %s\n", static_cast<unsigned long long>(count), outcome.c_str());
-  }
-  std::printf("criteria: tmax %s s, rmax %s m, threshold %s\n", number(p.tmax_s).c_str(), number(p.rmax_m).c_str(),
-              number(r.threshold).c_str());
-  std::printf("\n  %-28s %-5s  %-14s  %s\n", "probability", "p", "95% Wilson CI", "(runs)");
-  print_estimate("P(t <= " + number(p.tmax_s) + " s)", p.time);
-  print_estimate("P(every r <= " + number(p.rmax_m) + " m)", p.radius);
-  print_estimate("P(both) = P(success)", p.joint);
-  for (const auto& robot : p.robots) print_estimate("P(" + robot.name + " r <= " + number(p.rmax_m) + " m)", robot.radius);
-  std::printf("\n");
-  if (p.completion_mean_s) {
-    std::printf("completion time (successful runs): mean %.1f s, sd %.1f s\n", *p.completion_mean_s,
-                *p.completion_sd_s);
-  }
-  for (const auto& robot : p.robots) {
-    std::printf("%s: true distance to goal mean %.2f m, sd %.2f m\n", robot.name.c_str(), robot.dist_mean_m,
-                robot.dist_sd_m);
-  }
-  std::printf("P(success) %s the threshold %s\n", p.joint.p >= r.threshold ? "meets" : "is below",
-              number(r.threshold).c_str());
-  if (r.grid) print_grid(*r.grid, o);
-}
-
 }  // namespace
 
 int run_validate(ValidateOptions o) {
   if (auto problem = check_options(o)) return bad_input(*problem);
+  std::optional<team_sim::Shard> shard;
+  if (!o.shard.empty()) {
+    auto parsed = team_sim::parse_shard(o.shard);
+    if (!parsed) return bad_input("--shard: " + parsed.error().message);
+    if (parsed->count > o.trials) {
+      return bad_input("--shard: " + std::to_string(parsed->count) + " shards of " + std::to_string(o.trials) +
+                       " runs: expected at most one shard per run");
+    }
+    shard = *parsed;
+  }
+  // Hashed before loading: the part names the bytes the runs were made from.
+  std::string content_hash;
+  if (shard) {
+    auto hash = campaign_content_hash(o.mission_file, o.world_file);
+    if (!hash) return bad_input(hash.error().message);
+    content_hash = *hash;
+  }
   std::optional<team_sim::TeamScenario> scenario;
   try {
     scenario.emplace(mission::load_mission_file(o.mission_file), sim::load_world_file(o.world_file));
   } catch (const std::exception& e) {
     return bad_input(e.what());
   }
-  const mission::Criteria& criteria = scenario->mission().criteria;
-  if (!o.tmax_given) o.tmax_s = criteria.tmax_s;
-  if (!o.rmax_given) o.rmax_m = criteria.rmax_m;
-  std::vector<double> tmax_axis{o.tmax_s}, rmax_axis{o.rmax_m};
-  for (auto [flag, text, axis] : {std::tuple{"--tmax-range", &o.tmax_range, &tmax_axis},
-                                  std::tuple{"--rmax-range", &o.rmax_range, &rmax_axis}}) {
+  const mission::Mission& mission = scenario->mission();
+  if (!o.tmax_given) o.tmax_s = mission.criteria.tmax_s;
+  if (!o.rmax_given) o.rmax_m = mission.criteria.rmax_m;
+
+  // What the runs are counted against, and what the report prints: the same
+  // description for a whole campaign and for a shard's part.
+  team_sim::CampaignHeader campaign;
+  campaign.content_hash = content_hash;
+  campaign.seed = o.seed;
+  campaign.trials = o.trials;
+  campaign.timeout_s = o.timeout_s;
+  campaign.tmax_s = o.tmax_s;
+  campaign.rmax_m = o.rmax_m;
+  campaign.has_grid = !o.tmax_range.empty() || !o.rmax_range.empty();
+  campaign.tmax_axis = {o.tmax_s};
+  campaign.rmax_axis = {o.rmax_m};
+  for (auto [flag, text, axis] : {std::tuple{"--tmax-range", &o.tmax_range, &campaign.tmax_axis},
+                                  std::tuple{"--rmax-range", &o.rmax_range, &campaign.rmax_axis}}) {
     if (text->empty()) continue;
     auto parsed = parse_range(*text);
     if (!parsed) return bad_input(std::string(flag) + ": " + parsed.error().message);
     *axis = std::move(parsed).value();
   }
+  campaign.region_low = o.region_low;
+  campaign.region_high = o.region_high;
+  campaign.mission_name = mission.name;
+  campaign.threshold = mission.criteria.threshold;
+  for (const auto& r : mission.robots) campaign.robots.push_back(r.name);
+  campaign.mission_file = o.mission_file;
+  campaign.world_file = o.world_file;
 
   std::ofstream csv;
   if (!o.csv_file.empty()) {
@@ -251,17 +233,24 @@ int run_validate(ValidateOptions o) {
     if (!csv) return bad_input("cannot write " + o.csv_file);
   }
 
-  team_sim::CampaignOptions campaign;
-  campaign.runs = o.trials;
-  campaign.seed = o.seed;
-  campaign.jobs = o.jobs;
-  campaign.run.timeout_s = o.timeout_s;
-  const unsigned jobs = team_sim::campaign_jobs(campaign);
-  ProgressBar bar(isatty(STDERR_FILENO) != 0);
+  team_sim::CampaignOptions options;
+  const team_sim::RunRange range = shard ? team_sim::shard_runs(o.trials, *shard) : team_sim::RunRange{0, o.trials};
+  options.first_run = range.first;
+  options.runs = range.size();
+  options.seed = o.seed;
+  options.jobs = o.jobs;
+  options.run.timeout_s = o.timeout_s;
+  const unsigned jobs = team_sim::campaign_jobs(options);
+  const bool terminal = isatty(STDERR_FILENO) != 0;
+  ProgressBar bar(terminal);
+  std::optional<ShardProgressLog> shard_log;
+  if (shard && !terminal) shard_log.emplace(team_sim::to_string(*shard), slurm_job_label());
   std::vector<team_sim::RunResult> runs;
   try {
-    runs = team_sim::run_campaign(*scenario, campaign,
-                                  [&bar](std::uint64_t done, std::uint64_t total) { bar.update(done, total); });
+    runs = team_sim::run_campaign(*scenario, options, [&](std::uint64_t done, std::uint64_t total) {
+      bar.update(done, total);
+      if (shard_log) shard_log->update(done, total);
+    });
   } catch (const std::exception& e) {
     // A run throws only when the simulator cannot be built from the world
     // file (e.g. radio parameters): bad input, the same for every run.
@@ -269,32 +258,24 @@ int run_validate(ValidateOptions o) {
   }
   const double wall_s = bar.elapsed_s();
 
-  if (csv.is_open()) {
-    csv << validation_csv_header(scenario->mission()) << "\n";
-    for (const auto& run : runs) csv << validation_csv_row(run) << "\n";
-    csv.flush();
-    if (!csv) return bad_input("cannot write " + o.csv_file);
-  }
-
-  Report report;
-  report.mission_name = scenario->mission().name;
-  report.threshold = criteria.threshold;
-  report.point = team_sim::empirical_at(runs, o.tmax_s, o.rmax_m);
-  if (!o.tmax_range.empty() || !o.rmax_range.empty()) report.grid = team_sim::empirical_grid(runs, tmax_axis, rmax_axis);
-  report.failures = group_failures(runs);
-
-  if (o.json) {
-    std::cout << report_to_json(report, o).dump(2) << "\n";
+  std::uint64_t failed = 0;
+  if (shard) {
+    const team_sim::CampaignPart part = team_sim::make_part(campaign, *shard, std::move(runs));
+    if (auto written = team_sim::write_part_file(o.part_file, part); !written) return bad_input(written.error().message);
+    failed = part.counts.failed;
   } else {
-    print_text(report, o);
+    if (csv.is_open() && !write_validation_csv(csv, campaign.robots, runs)) return bad_input("cannot write " + o.csv_file);
+    failed = print_campaign_report(campaign, runs, o.json).failed_runs;
   }
-  std::cout.flush();
   // One grep-able line for logs; on stderr so stdout stays identical across runs.
-  std::fprintf(stderr, "vipars validate: runs=%llu failed=%llu jobs=%u wall_s=%.2f runs_per_s=%.1f\n",
-               static_cast<unsigned long long>(report.point.runs),
-               static_cast<unsigned long long>(report.point.failed_runs), jobs, wall_s,
-               wall_s > 0 ? static_cast<double>(report.point.runs) / wall_s : 0.0);
-  return report.point.failed_runs == report.point.runs ? kExitFailed : kExitOk;
+  std::fprintf(stderr, "vipars validate: %sruns=%llu failed=%llu jobs=%u wall_s=%.2f runs_per_s=%.1f\n",
+               shard ? ("shard=" + team_sim::to_string(*shard) + " part=" + o.part_file + " ").c_str() : "",
+               static_cast<unsigned long long>(range.size()), static_cast<unsigned long long>(failed), jobs, wall_s,
+               wall_s > 0 ? static_cast<double>(range.size()) / wall_s : 0.0);
+  // A shard's failed runs are results (in its part); whether the whole
+  // campaign failed is merge's to say.
+  if (shard) return kExitOk;
+  return failed == range.size() ? kExitFailed : kExitOk;
 }
 
 }  // namespace p3at::vipars

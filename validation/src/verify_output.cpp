@@ -62,6 +62,7 @@ nlohmann::json verify_json(const mission::Mission& mission, const verifier::Veri
   j["failed"] = r.failed;
   j["pruned_mass"] = r.pruned_mass;
   j["blocked_mass"] = r.blocked_mass;
+  j["loop_cutoff_mass"] = r.loop_cutoff_mass;
   j["branches"] = r.branches;
   j["subsystems"] = r.subsystems;
   if (r.grid) {
@@ -104,6 +105,10 @@ std::string verify_text(const mission::Mission& mission, const verifier::VerifyR
   if (r.pruned_mass > 0.0 || r.blocked_mass > 0.0) {
     s += "  probability mass pruned " + scientific(r.pruned_mass) + ", blocked (never finishes) " +
          scientific(r.blocked_mass) + "\n";
+  }
+  if (r.loop_cutoff_mass > 0.0) {
+    s += "  probability mass of loop laps beyond the budget " + scientific(r.loop_cutoff_mass) +
+         " (counted as failure)\n";
   }
   s += "  " + std::to_string(r.subsystems) + " subsystems evaluated, " + std::to_string(r.branches) +
        " ordering branch(es)\n";

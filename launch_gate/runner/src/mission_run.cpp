@@ -39,6 +39,7 @@
 #include "p3at/launch_gate/gate_session.hpp"
 #include "p3at/launch_gate/gate_team_link.hpp"
 #include "p3at/launch_gate/in_mission_monitor.hpp"
+#include "p3at/launch_gate/launch_session.hpp"
 #include "p3at/launch_gate/pre_launch_check.hpp"
 #include "p3at/launch_gate/reverifier.hpp"
 #include "launch_setup.hpp"
@@ -80,13 +81,14 @@ void print_summary(const p3at::exec::RobotExecutive& exec, double p_gate, const 
 void print_team_link_stats(const std::string& robot, const p3at::hal::TeamLinkStats& t) {
   std::printf("event=team-link robot=%s sent=%llu retransmissions=%llu accepted=%llu acks_received=%llu "
               "rejected_unknown_sender=%llu rejected_bad_tag=%llu rejected_replay=%llu rejected_other_mission=%llu "
-              "malformed=%llu verdicts_accepted=%llu telemetry_accepted=%llu\n",
+              "rejected_other_session=%llu malformed=%llu verdicts_accepted=%llu telemetry_accepted=%llu\n",
               robot.c_str(), static_cast<unsigned long long>(t.sent),
               static_cast<unsigned long long>(t.retransmissions), static_cast<unsigned long long>(t.accepted),
               static_cast<unsigned long long>(t.acks_received),
               static_cast<unsigned long long>(t.rejected_unknown_sender),
               static_cast<unsigned long long>(t.rejected_bad_tag), static_cast<unsigned long long>(t.rejected_replay),
-              static_cast<unsigned long long>(t.rejected_other_mission), static_cast<unsigned long long>(t.malformed),
+              static_cast<unsigned long long>(t.rejected_other_mission),
+              static_cast<unsigned long long>(t.rejected_other_session), static_cast<unsigned long long>(t.malformed),
               static_cast<unsigned long long>(t.verdicts_accepted),
               static_cast<unsigned long long>(t.telemetry_accepted));
   std::fflush(stdout);
@@ -97,6 +99,7 @@ int refusal_status(gate::AgreementState state) {
     case gate::AgreementState::no_go: return kExitGateNoGo;
     case gate::AgreementState::mismatch: return kExitGateMismatch;
     case gate::AgreementState::silent: return kExitGateSilent;
+    case gate::AgreementState::in_doubt: return kExitGateInDoubt;
     case gate::AgreementState::waiting:
     case gate::AgreementState::launch: break;
   }
@@ -180,6 +183,7 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
 
   p3at::hal::GateVerdict own = gate::make_verdict(report, opt.override_gate);
   own.robot = spec.name;
+  own.nonce = gate::fresh_gate_nonce();  // this run's, never reused: binds the launch to it
 
   p3at::exec::ExecutiveOptions exec_options;
   exec_options.seed = opt.seed;
@@ -254,7 +258,9 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
   if (agreement.state != gate::AgreementState::launch) {
     if (connected) (void)robot.disconnect();
     std::fputs(gate::format_check(report).c_str(), stdout);
-    std::printf("event=gate-refused robot=%s why=%s p_joint=%.4f threshold=%.4f reason=\"%s\"\n", spec.name.c_str(),
+    // In doubt is not a refusal: this robot committed, and a teammate may be moving.
+    std::printf("event=%s robot=%s why=%s p_joint=%.4f threshold=%.4f reason=\"%s\"\n",
+                agreement.state == gate::AgreementState::in_doubt ? "gate-in-doubt" : "gate-refused", spec.name.c_str(),
                 gate::to_string(agreement.state), own.p_joint, own.threshold, agreement.reason.c_str());
     print_team_link_stats(spec.name, inner_link.stats());
     return refusal_status(agreement.state);
@@ -262,7 +268,8 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
   p3at::log::info(kLog, "event=launch robot=" + spec.name + " decision=" + p3at::hal::to_string(own.decision) +
                             " p_joint=" + gate::fixed(own.p_joint, 4) + " reason=\"" + agreement.reason + "\"");
   // Teammates still at their gate hear this robot's verdict from the mission's link.
-  link.keep_publishing(own, 500'000);
+  // The verdict with the session this robot committed to.
+  link.keep_publishing(session.published, 500'000);
 
   // ---- the mission
   p3at::exec::RealtimeOptions loop_options;

@@ -24,10 +24,31 @@ inline hal::TeamKey gate_key(std::uint8_t seed = 1) {
 inline const std::string kHashA = std::string(64, 'a');
 inline const std::string kHashB = std::string(63, 'a') + "b";
 
+/// A fixed gate nonce per robot name: 32 hex digits, the name's last character
+/// (a digit) repeated; `generation` changes it (a restarted process).
+inline std::string nonce_of(const std::string& robot, int generation = 0) {
+  const char c = static_cast<char>('0' + (robot.back() - '0' + generation) % 10);
+  return std::string(32, c);
+}
+
+/// `v` having heard `robot`'s gate (nonce_of(robot, generation)).
+inline hal::GateVerdict hearing(hal::GateVerdict v, const std::string& robot, int generation = 0) {
+  v.heard.push_back({robot, nonce_of(robot, generation)});
+  return v;
+}
+
+/// `v` committed to `session`.
+inline hal::GateVerdict committed(hal::GateVerdict v, const std::string& session) {
+  v.session = session;
+  return v;
+}
+
+/// A verdict with the robot's nonce (nonce_of) and nothing heard yet.
 inline hal::GateVerdict verdict(const std::string& robot, hal::GateDecision decision, const std::string& hash = kHashA,
                                 double p_joint = 0.9) {
   hal::GateVerdict v;
   v.robot = robot;
+  v.nonce = nonce_of(robot);
   v.mission_hash = hash;
   v.decision = decision;
   v.p_time = p_joint;

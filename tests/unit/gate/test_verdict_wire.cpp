@@ -80,7 +80,9 @@ TEST_CASE("decisions have one wire spelling each, and only those decode") {
 
 TEST_CASE("a verdict round-trips through the wire with its tag, and only the team key verifies it") {
   const auto key = test::gate_key(1);
-  const auto w = wire("robot2", GateDecision::override_go);
+  auto w = wire("robot2", GateDecision::override_go);
+  w.verdict.heard = {{"robot1", test::nonce_of("robot1")}};
+  w.verdict.session = std::string(64, 'c');
   auto bytes = hal::encode_verdict(w, key);
   REQUIRE(bytes.ok());
   auto back = hal::decode_verdict(bytes.value(), key);
@@ -95,6 +97,9 @@ TEST_CASE("a verdict round-trips through the wire with its tag, and only the tea
   CHECK(back->wire.verdict.threshold == doctest::Approx(0.8));
   CHECK(back->wire.verdict.tmax_s == doctest::Approx(60.0));
   CHECK(back->wire.verdict.detail == "P(joint) = 0.42 < 0.8");
+  CHECK(back->wire.verdict.nonce == test::nonce_of("robot2"));
+  CHECK(back->wire.verdict.session == std::string(64, 'c'));
+  CHECK(back->wire.verdict.heard == w.verdict.heard);
 
   auto other = hal::decode_verdict(bytes.value(), test::gate_key(9));
   REQUIRE(other.ok());
@@ -139,6 +144,10 @@ TEST_CASE("decoding is strict: unknown decision, bad hash, non-finite numbers, t
   good.seq = 1;
   good.mission_hash = test::kHashA;
   good.decision = "GO";
+  good.nonce = test::nonce_of("robot1");
+  good.num_heard = 1;
+  good.heard_robot = {"robot2"};
+  good.heard_nonce = {test::nonce_of("robot2")};
   good.tag_len = 0;
   REQUIRE(hal::decode_verdict(raw_bytes(good), key).ok());  // untagged: decodes, tag fails
   CHECK_FALSE(hal::decode_verdict(raw_bytes(good), key)->tag_ok);
@@ -154,6 +163,28 @@ TEST_CASE("decoding is strict: unknown decision, bad hash, non-finite numbers, t
   CHECK_FALSE(hal::decode_verdict(raw_bytes(bad), key).ok());
   bad = good;
   bad.seq = -1;
+  CHECK_FALSE(hal::decode_verdict(raw_bytes(bad), key).ok());
+  // The launch session's fields: a nonce is exactly 32 lowercase hex digits,
+  // a session empty or 64, every heard nonce 32.
+  bad = good;
+  bad.nonce = "";
+  CHECK_FALSE(hal::decode_verdict(raw_bytes(bad), key).ok());
+  bad = good;
+  bad.nonce = std::string(32, 'A');
+  CHECK_FALSE(hal::decode_verdict(raw_bytes(bad), key).ok());
+  bad = good;
+  bad.session = std::string(63, 'a');
+  CHECK_FALSE(hal::decode_verdict(raw_bytes(bad), key).ok());
+  bad = good;
+  bad.session = std::string(64, 'a');
+  CHECK(hal::decode_verdict(raw_bytes(bad), key).ok());
+  bad = good;
+  bad.heard_nonce = {"xyz"};
+  CHECK_FALSE(hal::decode_verdict(raw_bytes(bad), key).ok());
+  bad = good;
+  bad.num_heard = 33;
+  bad.heard_robot.assign(33, "robot2");
+  bad.heard_nonce.assign(33, test::nonce_of("robot2"));
   CHECK_FALSE(hal::decode_verdict(raw_bytes(bad), key).ok());
   auto bytes = raw_bytes(good);
   for (std::size_t cut = 0; cut < bytes.size(); cut += 7) {

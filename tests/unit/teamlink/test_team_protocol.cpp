@@ -386,3 +386,39 @@ TEST_CASE("configuration errors name the problem") {
   CHECK(bad(c).find("retransmit") != std::string::npos);
   CHECK_FALSE(TeamProtocol::create(test::team_config("zulu"), test::fixed_key()).ok());
 }
+
+TEST_CASE("the launch session: messages of another session (a recording of another run) are counted, never delivered") {
+  const std::string session_a(64, 'a');
+  const std::string session_b(64, 'b');
+  auto alpha = make("alpha");
+  auto bravo = make("bravo");
+  alpha.set_session(session_a);
+  bravo.set_session(session_b);  // bravo belongs to another run
+  std::vector<TeamDatagram> out;
+  REQUIRE(alpha.notify("at_door", {"bravo"}, out).ok());
+  out.push_back(alpha.status({"alpha", "running", "GoToDoor", "", 0.9}).value());
+  out.push_back(alpha.telemetry(hal::Telemetry{"alpha", "GoToDoor"}).value());
+  auto rx = deliver(bravo, out, 5'000);
+  CHECK(rx.delivered.empty());
+  CHECK(rx.out.empty());  // not even acknowledged
+  CHECK(bravo.stats().rejected_other_session == 3);
+  CHECK(bravo.teammate_status().empty());
+  CHECK(bravo.teammate_telemetry().empty());
+  CHECK_FALSE(bravo.last_heard_us("alpha").has_value());
+  // The session is inside the tag: rewriting it on the wire breaks authentication.
+  auto forged = hal::decode_notification(out[0].bytes, test::fixed_key(1)).value().wire;
+  forged.session = session_b;
+  auto reencoded = hal::encode_notification(forged, test::fixed_key(99)).value();  // a forger lacks the key
+  deliver(bravo, {{TeamChannel::notify, reencoded}});
+  CHECK(bravo.stats().rejected_bad_tag == 1);
+
+  // The same session: delivered, and the sender counts as heard at that time.
+  bravo.set_session(session_a);
+  rx = deliver(bravo, out, 7'000);
+  CHECK(rx.delivered.size() == 1);
+  CHECK(bravo.last_heard_us("alpha") == 7'000);
+  CHECK(bravo.teammate_status().size() == 1);
+  // A session that is not 64 lowercase hex digits is ignored.
+  bravo.set_session("nonsense");
+  CHECK(bravo.session() == session_a);
+}

@@ -28,6 +28,7 @@ NotificationWire golden_notification() {
   NotificationWire w;
   w.utime_us = 1700000000000000;
   w.mission_id = "cbrn-search-1";
+  w.session = "abababababababababababababababababababababababababababababababab";
   w.sender = "alpha";
   w.seq = 42;
   w.message = "at_door";
@@ -35,13 +36,17 @@ NotificationWire golden_notification() {
   return w;
 }
 
-// Computed independently of this code base (Python's struct + hmac modules):
-// the LCM encoding of golden_notification() with tag_len 0, tagged with
-// HMAC-SHA-512 truncated to 32 bytes under the key 01 02 ... 20.
+// Computed independently of this code base (Python's struct + hmac modules,
+// and lcm-gen's fingerprint algorithm re-implemented in Python, checked
+// against the type's earlier fingerprint 4ad14480de4b6677): the LCM encoding
+// of golden_notification() with tag_len 0, tagged with HMAC-SHA-512 truncated
+// to 32 bytes under the key 01 02 ... 20. The session is inside the tag.
 const std::string kGoldenHex =
-    "4ad14480de4b667700060a24181e40000000000e6362726e2d7365617263682d310000000006616c7068610000000000000000"
-    "2a0000000861745f646f6f72000000000001000000000000000000000200000006627261766f0000000008636861726c6965"
-    "000020cdf1e28275e01c53e98a1e631e1d65a7876eca5ae508cb623361939e45554aeb";
+    "a1651b5eea7cc84a00060a24181e40000000000e6362726e2d7365617263682d310000000041616261626162616261626162"
+    "6162616261626162616261626162616261626162616261626162616261626162616261626162616261626162616261626162"
+    "61620000000006616c70686100000000000000002a0000000861745f646f6f72000000000001000000000000000000000200"
+    "000006627261766f0000000008636861726c69650000208ef9f617da18625becaa26910c019427c5dbd1eca8e7d0e7f17c1d"
+    "8189886fe9";
 
 std::vector<std::uint8_t> encode_raw(const p3at_lcm::notification_t& msg) {
   std::vector<std::uint8_t> out(static_cast<std::size_t>(msg.getEncodedSize()));
@@ -81,6 +86,7 @@ TEST_CASE("notification encoding matches an independently computed golden vector
   CHECK(decoded->wire.recipients == std::vector<std::string>{"bravo", "charlie"});
   CHECK(decoded->wire.utime_us == 1700000000000000);
   CHECK_FALSE(decoded->wire.is_ack);
+  CHECK(decoded->wire.session == golden_notification().session);
 }
 
 TEST_CASE("round trips of all three types keep every field and verify") {

@@ -9,6 +9,8 @@
 #include <utility>
 #include <variant>
 
+#include "engine/interruption.hpp"
+#include "engine/race.hpp"
 #include "engine/state_analysis.hpp"
 
 namespace p3at::verifier::engine {
@@ -16,6 +18,9 @@ namespace {
 
 // Orderings less likely than this are not worth a branch.
 constexpr double kNegligible = 1e-9;
+// Bins of the interruption time when a message takes a robot out of a motion
+// state (engine/interruption.hpp): each a branch until the robot's next event.
+constexpr std::size_t kInterruptionBins = 12;
 // Separation samples farther apart than this (mean) cannot matter to a safety
 // criterion about robots coming close; they are not kept.
 constexpr double kSeparationHorizonM = 6.0;
@@ -48,9 +53,43 @@ std::pair<double, double> plausible_span(const Mixture1& x) {
   return {lo, hi};
 }
 
+/// The variance an event's time took out of a pending residual that was
+/// surely later (remaining_after): (the event's sequence number, the variance).
+/// The residual's mixture keeps Var X - Var Y so that the clock plus the
+/// residual has Var X; but compared with something that did not share that
+/// event (a message sent later, a robot that entered a state after it), the
+/// residual's spread is Var X + Var Y. Every such comparison adds back twice
+/// the variance of the events in either side's list (see comparison_var).
+struct Hidden {
+  std::size_t event = 0;
+  double var = 0.0;
+};
+using HiddenList = std::vector<Hidden>;
+
+/// 2 x the variance over the union of two hidden lists (by event).
+double comparison_var(const HiddenList& a, const HiddenList& b) {
+  double sum = 0.0;
+  for (const Hidden& h : a) sum += h.var;
+  for (const Hidden& h : b) {
+    const bool shared = std::any_of(a.begin(), a.end(), [&](const Hidden& g) { return g.event == h.event; });
+    if (!shared) sum += h.var;
+  }
+  return 2.0 * sum;
+}
+
+/// x with every component's variance grown by `extra`.
+Mixture1 widened(const Mixture1& x, double extra) {
+  if (!(extra > 0.0)) return x;
+  Mixture1 out = x;
+  for (Component1& c : out.components) c.var += extra;
+  return out;
+}
+
 /// X - Y given X > Y, for independent X, Y: what is left of a pending
-/// duration after another event happened first.
-Mixture1 remaining_after(const Mixture1& x, const Mixture1& y, std::size_t k) {
+/// duration after another event happened first. When X is surely later, the
+/// variance taken out is appended to `hidden` under `event`.
+Mixture1 remaining_after(const Mixture1& x, const Mixture1& y, std::size_t k, HiddenList* hidden = nullptr,
+                         std::size_t event = 0) {
   const auto [x_lo, x_hi] = plausible_span(x);
   const auto [y_lo, y_hi] = plausible_span(y);
   (void)x_hi;
@@ -61,10 +100,28 @@ Mixture1 remaining_after(const Mixture1& x, const Mixture1& y, std::size_t k) {
     // costs one pass over X instead of a pairwise sum and a reduction.
     const double y_mean = y.mean(), y_var = y.variance();
     Mixture1 left = x;
+    double taken = 0.0;  // the variance actually taken out (components cannot go below 0)
     for (Component1& c : left.components) {
       c.mean -= y_mean;
-      c.var = std::max(c.var - y_var, 0.0);
+      const double v = std::max(c.var - y_var, 0.0);
+      taken += c.weight * (c.var - v);
+      c.var = v;
     }
+    // What the components could not give (point masses: a leg's NOISE paths)
+    // comes out of the spread between them, pulling their means toward the
+    // mixture's mean, so that the clock plus the residual keeps Var X.
+    const double rest = y_var - taken;
+    if (rest > 0.0) {
+      const double m = left.mean();
+      double between = 0.0;
+      for (const Component1& c : left.components) between += c.weight * (c.mean - m) * (c.mean - m);
+      if (between > 0.0) {
+        const double shrink = std::sqrt(std::max(0.0, between - rest) / between);
+        for (Component1& c : left.components) c.mean = m + shrink * (c.mean - m);
+        taken += between * (1.0 - shrink * shrink);
+      }
+    }
+    if (hidden != nullptr && taken > 0.0) hidden->push_back({event, taken});
     return left;
   }
   const Mixture1 diff = sum(x, negated(y), k);
@@ -74,9 +131,25 @@ Mixture1 remaining_after(const Mixture1& x, const Mixture1& y, std::size_t k) {
   return left;
 }
 
+/// The robots whose events decided a time (a bit per robot; a robot beyond
+/// the 64th counts as every robot, which only ever makes times dependent).
+/// Two times of disjoint lineages are independent: their absolute values can
+/// be compared as independent random variables, exactly, where residuals
+/// relative to a clock that one of them built cannot (a patrol's laps against
+/// a teammate's long leg: the teammate's residual after each lap keeps the
+/// lap's spread, or loses it, but never as an independent time would).
+using Lineage = std::uint64_t;
+Lineage lineage_of(std::size_t robot) { return robot < 64 ? (Lineage{1} << robot) : ~Lineage{0}; }
+bool independent(Lineage a, Lineage b) { return (a & b) == 0; }
+
 struct Pending {
   std::size_t transition = 0;
   Mixture1 residual;  ///< seconds from the branch clock until it fires
+  HiddenList hidden;  ///< variance taken out by earlier events (remaining_after)
+  /// The mission time at which it fires (conditioned on the events before it
+  /// that were independent of it), and whose events decided that time.
+  std::optional<Mixture1> absolute;
+  Lineage lineage = 0;
 };
 
 struct Track {
@@ -90,12 +163,30 @@ struct Track {
   bool final = false;
   Mixture1 finish;
   std::vector<std::string> trace;
+  // The current state's entry, for an interruption (engine/interruption.hpp):
+  // the clock then, the events before it, and the time since (the sum of the
+  // clock's increments; `since_hidden` is what comparison_var would add back
+  // for the increments' hidden variance from events before the entry).
+  Mixture1 entry_clock = Mixture1::point(0.0);
+  Lineage entry_lineage = 0;
+  Lineage lineage = 0;  ///< whose events decided when the robot entered its current state
+  std::size_t entry_events = 0;
+  Mixture1 since_entry = Mixture1::point(0.0);
+  double since_hidden = 0.0;
+  /// The bin of the interruption that took it out of its last motion state
+  /// (0: none); part of the branch's configuration until its next event, so
+  /// the bins are not merged back into one pose.
+  std::size_t interruption_bin = 0;
+  /// Entries per state in this branch: a loop's laps (the budget cuts them off).
+  std::vector<std::size_t> visits;
+  /// The motion within that bin, a position spread on top of `spread`.
+  Eigen::Matrix2d extra_cov = Eigen::Matrix2d::Zero();
 
   Eigen::Vector2d true_mean() const { return {base.x_m + error.mean(0), base.y_m + error.mean(1)}; }
   Gaussian2 true_position() const {
     Gaussian2 g;
     g.mean = true_mean();
-    g.cov = spread + error.cov.topLeftCorner<2, 2>();
+    g.cov = spread + extra_cov + error.cov.topLeftCorner<2, 2>();
     return g;
   }
 };
@@ -105,6 +196,9 @@ struct BranchState {
   Mixture1 clock = Mixture1::point(0.0);
   std::vector<Track> robots;
   std::vector<std::optional<Mixture1>> delivery;  ///< per message: residual until delivered; nullopt = not sent
+  std::vector<std::optional<Mixture1>> delivery_at;  ///< per message: the mission time it is delivered
+  std::vector<Lineage> delivery_lineage;             ///< per message: whose events decided that time
+  Lineage clock_lineage = 0;                          ///< whose events decided the clock
   std::vector<SeparationSample> separations;
   std::vector<std::size_t> event_robots;
 };
@@ -123,6 +217,7 @@ class Sequencer {
 
  private:
   std::size_t k() const { return models_.budget.max_components; }
+  std::size_t max_visits() const { return std::max<std::size_t>(1, models_.budget.max_events / 100); }
   double cycle_s(std::size_t robot) const { return robot_models_[robot]->kinematics.cycle_s; }
 
   /// The Def. 10 loop: one event per branch per step until every branch has
@@ -141,8 +236,11 @@ class Sequencer {
   std::vector<BranchState> start() {
     BranchState b;
     b.delivery.assign(mission_.messages.size(), std::nullopt);
+    b.delivery_at.assign(mission_.messages.size(), std::nullopt);
+    b.delivery_lineage.assign(mission_.messages.size(), 0);
     for (const mission::RobotSpec& r : mission_.robots) {
       Track t;
+      t.lineage = lineage_of(b.robots.size());
       constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
       t.base = BaseState{r.start.x_m, r.start.y_m, r.start.theta_deg * kDegToRad, 0.0, 0.0};
       b.robots.push_back(std::move(t));
@@ -167,15 +265,22 @@ class Sequencer {
     BranchState b;
     b.clock = Mixture1::point(snap.elapsed_s);
     b.delivery.assign(mission_.messages.size(), std::nullopt);
+    b.delivery_at.assign(mission_.messages.size(), std::nullopt);
+    b.delivery_lineage.assign(mission_.messages.size(), 0);
     for (std::size_t m = 0; m < mission_.messages.size(); ++m) {
       const bool sent = m < snap.messages_sent.size() && snap.messages_sent[m];
       const bool received = m < snap.messages_received.size() && snap.messages_received[m];
       if (received) b.delivery[m] = Mixture1::point(0.0);
       else if (sent) b.delivery[m] = delay_in_cycles(models_.comm.delivery_s, cycle_s(mission_.messages[m].from), k());
+      if (b.delivery[m]) {
+        b.delivery_at[m] = sum(b.clock, *b.delivery[m], k());
+        b.delivery_lineage[m] = lineage_of(mission_.messages[m].from);
+      }
     }
     for (std::size_t i = 0; i < mission_.robots.size(); ++i) {
       const RobotSnapshot& s = snap.robots.at(i);
       Track t;
+      t.lineage = lineage_of(i);
       t.base = BaseState{s.x_m, s.y_m, s.theta_rad, 0.0, 0.0};
       const auto it = entry_errors_.find({i, s.state});
       if (it != entry_errors_.end()) t.error = it->second;
@@ -204,6 +309,19 @@ class Sequencer {
     Track& track = b.robots[i];
     track.state = state;
     track.pending.clear();
+    // A loop (a back-edge in the FSA) is the paper's tail recursion unrolled
+    // one lap per entry; laps beyond the budget are cut off, their mass
+    // reported and counted as failure.
+    if (track.visits.size() < spec.states.size()) track.visits.resize(spec.states.size(), 0);
+    if (++track.visits[state] > max_visits()) {
+      outcome_.loop_cutoff_mass += b.weight;
+      return;
+    }
+    track.entry_clock = b.clock;
+    track.entry_lineage = b.clock_lineage;
+    track.entry_events = b.event_robots.size();
+    track.since_entry = Mixture1::point(0.0);
+    track.since_hidden = 0.0;
     if (trace) track.trace.push_back(spec.states[state].name);
     if (record_entries_) entry_errors_.emplace(std::make_pair(i, state), track.error);
 
@@ -211,6 +329,8 @@ class Sequencer {
     if (const auto* notify = std::get_if<mission::NotifyParams>(&spec.states[state].behavior)) {
       if (const auto m = mission_.find_message(notify->message)) {
         b.delivery[*m] = delay_in_cycles(models_.comm.delivery_s, cycle_s(i), k());
+        b.delivery_at[*m] = sum(b.clock, *b.delivery[*m], k());
+        b.delivery_lineage[*m] = track.lineage;
         release_waiters(b, *m);
       }
     }
@@ -238,7 +358,20 @@ class Sequencer {
       const auto* n = std::get_if<mission::NotifiedParams>(&spec.transitions[t].trigger);
       if (n == nullptr) continue;
       const auto m = mission_.find_message(n->message);
-      if (m && b.delivery[*m]) track.pending.push_back({t, maximum(*b.delivery[*m], cycle_s(i))});
+      if (m && b.delivery[*m]) {
+        // Seen at the earliest one cycle after the entry: already delivered,
+        // the time is the robot's own; still on its way, the later of the two.
+        const Mixture1 seen = shifted(b.clock, cycle_s(i));
+        const bool delivered = plausible_span(*b.delivery[*m]).second <= 0.0;
+        Pending p{t, maximum(*b.delivery[*m], cycle_s(i)), {}, std::nullopt, track.lineage};
+        if (delivered) {
+          p.absolute = seen;
+        } else if (b.delivery_at[*m]) {
+          p.absolute = maximum(*b.delivery_at[*m], seen, k());
+          p.lineage |= b.delivery_lineage[*m];
+        }
+        track.pending.push_back(std::move(p));
+      }
     }
     const StateAnalysis& a = track.analysis;
     if (a.blocked > kNegligible) outcome_.blocked_mass += b.weight * a.blocked;
@@ -252,7 +385,8 @@ class Sequencer {
     for (const TimedExit& e : a.exits) {
       BranchState child = b;
       child.weight = b.weight * e.probability;
-      child.robots[i].pending.push_back({e.transition, e.duration_s});
+      child.robots[i].pending.push_back(
+          {e.transition, e.duration_s, {}, sum(b.clock, e.duration_s, k()), child.robots[i].lineage});
       out.push_back(std::move(child));
     }
   }
@@ -294,7 +428,7 @@ class Sequencer {
         const auto* n = std::get_if<mission::NotifiedParams>(&spec.transitions[tr].trigger);
         if (n == nullptr || n->message != mission_.messages[m].name) continue;
         const bool already = std::any_of(t.pending.begin(), t.pending.end(), [&](const Pending& p) { return p.transition == tr; });
-        if (!already) t.pending.push_back({tr, *b.delivery[m]});
+        if (!already) t.pending.push_back({tr, *b.delivery[m], {}, b.delivery_at[m], b.delivery_lineage[m]});
       }
     }
   }
@@ -356,15 +490,45 @@ class Sequencer {
       if (span[c].first <= earliest_latest) rivals.push_back(c);
     }
 
-    // Which fires first: P(R_c < R_o for every other rival o), pairwise products, normalised.
+    // Which fires first: P(R_c < R_o for every other rival o), normalised.
+    // Two rivals: the pairwise probability. Three or more whose times are
+    // mutually independent (disjoint lineages: robots that have not heard
+    // from each other): the joint probability by quadrature over the race on
+    // their absolute times (first_probabilities). Otherwise the product of
+    // pairwise probabilities: one robot's own exits, or times that share
+    // history, are not independent, and the product is what was validated.
     std::vector<double> first(rivals.size(), 1.0);
     double total = 0.0;
-    for (std::size_t c = 0; c < rivals.size(); ++c) {
-      for (std::size_t o = 0; o < rivals.size() && first[c] > kNegligible; ++o) {
-        if (o != c) first[c] *= probability_less(residual(candidates[rivals[c]]), residual(candidates[rivals[o]]));
+    bool joint = false;
+    if (rivals.size() >= 3) {
+      bool apart = true;
+      for (std::size_t c = 0; c < rivals.size() && apart; ++c) {
+        const Pending& pc = b.robots[candidates[rivals[c]].robot].pending[candidates[rivals[c]].index];
+        for (std::size_t o = c + 1; o < rivals.size() && apart; ++o) {
+          const Pending& po = b.robots[candidates[rivals[o]].robot].pending[candidates[rivals[o]].index];
+          apart = pc.absolute && po.absolute && independent(pc.lineage, po.lineage);
+        }
       }
-      total += first[c];
+      if (apart) {
+        std::vector<const Mixture1*> xs;
+        for (const std::size_t r : rivals) xs.push_back(&*b.robots[candidates[r].robot].pending[candidates[r].index].absolute);
+        first = first_probabilities(xs);
+        joint = true;
+      }
     }
+    for (std::size_t c = 0; c < rivals.size() && !joint; ++c) {
+      for (std::size_t o = 0; o < rivals.size() && first[c] > kNegligible; ++o) {
+        if (o == c) continue;
+        const Pending& pc = b.robots[candidates[rivals[c]].robot].pending[candidates[rivals[c]].index];
+        const Pending& po = b.robots[candidates[rivals[o]].robot].pending[candidates[rivals[o]].index];
+        if (pc.absolute && po.absolute && independent(pc.lineage, po.lineage)) {
+          first[c] *= probability_less(*pc.absolute, *po.absolute);
+        } else {
+          first[c] *= probability_less(widened(pc.residual, comparison_var(pc.hidden, po.hidden)), po.residual);
+        }
+      }
+    }
+    for (const double f : first) total += f;
     if (!(total > 0.0)) {  // ties everywhere (identical point masses): file order decides
       first.assign(rivals.size(), 0.0);
       first[0] = 1.0;
@@ -388,27 +552,68 @@ class Sequencer {
       child.weight *= p;
       const Mixture1 r_c_raw = child.robots[winner.robot].pending[winner.index].residual;
       Mixture1 r_c = r_c_raw;
+      // The event's mission time: its own absolute time when that is
+      // independent of the clock (conditioned on being before its
+      // independent rivals), else the clock plus the residual.
+      const Pending& wp = child.robots[winner.robot].pending[winner.index];
+      std::optional<Mixture1> at;
+      if (wp.absolute && independent(wp.lineage, child.clock_lineage)) at = *wp.absolute;
       if (!sure) {
         for (std::size_t o = 0; o < rivals.size(); ++o) {
           if (o == c) continue;
           const Candidate& rival = candidates[rivals[o]];
+          const Pending& rp = child.robots[rival.robot].pending[rival.index];
           double q = 0.0;
-          const Mixture1 cond = conditioned_less(r_c, child.robots[rival.robot].pending[rival.index].residual, k(), q);
+          const Mixture1 cond = conditioned_less(r_c, rp.residual, k(), q);
           if (!cond.components.empty() && q > 0.0) r_c = cond;
+          if (at && rp.absolute && independent(wp.lineage, rp.lineage)) {
+            double qa = 0.0;
+            const Mixture1 cond_at = conditioned_less(*at, *rp.absolute, k(), qa);
+            if (!cond_at.components.empty() && qa > 0.0) at = cond_at;
+          }
         }
       }
-      fire(std::move(child), winner.robot, winner.index, r_c, r_c_raw, out);
+      fire(std::move(child), winner.robot, winner.index, r_c, r_c_raw, at, out);
       if (sure) break;
     }
   }
 
   void fire(BranchState b, std::size_t i, std::size_t pending_index, const Mixture1& elapsed, const Mixture1& elapsed_raw,
-            std::vector<BranchState>& out) {
+            const std::optional<Mixture1>& at, std::vector<BranchState>& out) {
     const std::size_t transition = b.robots[i].pending[pending_index].transition;
-    b.clock = sum(b.clock, elapsed, k());
+    const HiddenList winner_hidden = b.robots[i].pending[pending_index].hidden;
+    const Lineage winner_lineage = b.robots[i].pending[pending_index].lineage;
+    const std::size_t event = b.event_robots.size();
+    if (at) {
+      b.clock = *at;
+      b.clock_lineage = winner_lineage;
+    } else {
+      b.clock = sum(b.clock, elapsed, k());
+      b.clock_lineage |= winner_lineage;
+    }
+    // Times independent of this event are later than it (it came first).
     for (std::size_t j = 0; j < b.robots.size(); ++j) {
       if (j == i) continue;
-      for (Pending& p : b.robots[j].pending) p.residual = remaining_after(p.residual, elapsed_raw, k());
+      for (Pending& p : b.robots[j].pending) {
+        if (!p.absolute || !independent(p.lineage, b.clock_lineage)) continue;
+        if (plausible_span(*p.absolute).first > plausible_span(b.clock).second) continue;
+        double q = 0.0;
+        const Mixture1 later = conditioned_greater(*p.absolute, b.clock, k(), q);
+        if (!later.components.empty() && q > 0.0) p.absolute = later;
+      }
+    }
+    for (std::size_t j = 0; j < b.robots.size(); ++j) {
+      Track& tj = b.robots[j];
+      // The time since each robot's state entry grows by this event's
+      // elapsed time (the firing robot's too: its interruption time).
+      if (!tj.final) {
+        tj.since_entry = sum(tj.since_entry, elapsed, k());
+        for (const Hidden& h : winner_hidden) {
+          if (h.event < tj.entry_events) tj.since_hidden += 2.0 * h.var;
+        }
+      }
+      if (j == i) continue;
+      for (Pending& p : tj.pending) p.residual = remaining_after(p.residual, elapsed_raw, k(), &p.hidden, event);
     }
     for (std::optional<Mixture1>& d : b.delivery) {
       if (!d) continue;
@@ -424,18 +629,76 @@ class Sequencer {
     }
     b.event_robots.push_back(i);
     Track& t = b.robots[i];
+    const mission::RobotSpec& spec = mission_.robots[i];
+    const bool by_message = std::holds_alternative<mission::NotifiedParams>(spec.transitions[transition].trigger);
+    // A robot taken on by a message goes on at the message's time.
+    if (by_message) t.lineage = winner_lineage | lineage_of(i);
+    if (by_message && t.analysis.trajectory) {
+      interrupt(std::move(b), i, transition, out);
+      return;
+    }
+    t.interruption_bin = 0;
     t.base = t.analysis.end;
     t.error = t.analysis.error;
     if (t.analysis.sets_spread) {
       t.spread = t.analysis.end_spread;
       t.spread_points = t.analysis.end_offsets;
+      t.extra_cov.setZero();
     }
     const double now = b.clock.mean();
     const Gaussian2 pi = t.true_position();
     for (std::size_t j = 0; j < b.robots.size(); ++j) {
       if (j != i) record_separation(b, i, j, now, pi);
     }
-    enter(std::move(b), i, mission_.robots[i].transitions[transition].to, out);
+    enter(std::move(b), i, spec.transitions[transition].to, out);
+  }
+
+  /// A message takes robot i out of a motion state (b's clock is already at
+  /// the event): the robot is where its leg has got to at the interruption
+  /// time τ (since the state's entry), one branch per bin of τ.
+  void interrupt(BranchState b, std::size_t i, std::size_t transition, std::vector<BranchState>& out) {
+    Track& t = b.robots[i];
+    // The time since the state's entry: the difference of two independent
+    // times when the clock and the entry were decided by different robots,
+    // else the clock's increments since the entry.
+    const bool apart = independent(t.entry_lineage, b.clock_lineage);
+    Mixture1 tau = apart ? maximum(sum(b.clock, negated(t.entry_clock), k()), 0.0) : widened(t.since_entry, t.since_hidden);
+    if (apart) reduce(tau, k());
+    const std::vector<InterruptionBin> bins = interruption_bins(*t.analysis.trajectory, tau, kInterruptionBins);
+    // The clock given τ's bin (Gaussian conditioning on the moments): the
+    // clock is the entry's clock plus τ, the two correlated as their
+    // variances say (Cov(C, E) from Var τ = Var C + Var E - 2 Cov(C, E)).
+    const double var_c = b.clock.variance(), var_e = t.entry_clock.variance(), var_tau = tau.variance();
+    const double mean_c = b.clock.mean(), mean_tau = tau.mean();
+    const double cov_c_tau = 0.5 * (var_c - var_e + var_tau);
+    const double beta = var_tau > 1e-12 ? std::clamp(cov_c_tau / var_tau, 0.0, 1.0) : 0.0;
+    const std::size_t to = mission_.robots[i].transitions[transition].to;
+    for (std::size_t k_bin = 0; k_bin < bins.size(); ++k_bin) {
+      const InterruptionBin& bin = bins[k_bin];
+      if (bin.probability < kNegligible) {
+        outcome_.pruned_mass += b.weight * bin.probability;
+        continue;
+      }
+      BranchState child = k_bin + 1 == bins.size() ? std::move(b) : b;
+      child.weight *= bin.probability;
+      if (bins.size() > 1) {
+        const double var = std::max(0.0, var_c - beta * beta * var_tau + beta * beta * bin.tau_var_s2);
+        child.clock = Mixture1::gaussian(mean_c + beta * (bin.tau_mean_s - mean_tau), var);
+      }
+      Track& ti = child.robots[i];
+      ti.interruption_bin = bins.size() > 1 ? k_bin + 1 : 0;
+      ti.base = bin.base;
+      ti.error = bin.error;
+      ti.spread = bin.spread;
+      ti.spread_points = bin.offsets;
+      ti.extra_cov = bin.within;
+      const double now = child.clock.mean();
+      const Gaussian2 pi = ti.true_position();
+      for (std::size_t j = 0; j < child.robots.size(); ++j) {
+        if (j != i) record_separation(child, i, j, now, pi);
+      }
+      enter(std::move(child), i, to, out);
+    }
   }
 
   void finish(BranchState b) {
@@ -453,7 +716,7 @@ class Sequencer {
       for (const Eigen::Vector2d& offset : t.spread_points) {
         Gaussian2 g;
         g.mean = t.true_mean() + offset;
-        g.cov = t.error.cov.topLeftCorner<2, 2>();
+        g.cov = t.error.cov.topLeftCorner<2, 2>() + t.extra_cov;
         r.final_components.push_back(g);
       }
       r.believed_position = Eigen::Vector2d(t.base.x_m, t.base.y_m);
@@ -492,7 +755,7 @@ class Sequencer {
   std::string configuration_key(const BranchState& b) const {
     std::string key;
     for (const Track& t : b.robots) {
-      key += std::to_string(t.state) + (t.final ? "F" : "") + "[";
+      key += std::to_string(t.state) + (t.final ? "F" : "") + "/" + std::to_string(t.interruption_bin) + "[";
       for (const Pending& p : t.pending) key += std::to_string(p.transition) + ",";
       key += "]";
     }
@@ -509,9 +772,19 @@ class Sequencer {
       Track& ta = a.robots[i];
       const Track& tb = b.robots[i];
       for (std::size_t p = 0; p < ta.pending.size(); ++p) {
-        ta.pending[p].residual = blend(ta.pending[p].residual, wa, tb.pending[p].residual, wb, k());
+        Pending& pa = ta.pending[p];
+        const Pending& pb = tb.pending[p];
+        pa.residual = blend(pa.residual, wa, pb.residual, wb, k());
+        if (pa.absolute && pb.absolute) pa.absolute = blend(*pa.absolute, wa, *pb.absolute, wb, k());
+        else pa.absolute.reset();
+        pa.lineage |= pb.lineage;
       }
+      ta.lineage |= tb.lineage;
+      ta.entry_lineage |= tb.entry_lineage;
       if (ta.final) ta.finish = blend(ta.finish, wa, tb.finish, wb, k());
+      ta.since_entry = blend(ta.since_entry, wa, tb.since_entry, wb, k());
+      ta.since_hidden = (wa * ta.since_hidden + wb * tb.since_hidden) / w;
+      ta.entry_clock = blend(ta.entry_clock, wa, tb.entry_clock, wb, k());
       const ErrorState errors[2] = {ta.error, tb.error};
       const double ws[2] = {wa, wb};
       ta.error = combine(errors, ws, 2);
@@ -528,7 +801,10 @@ class Sequencer {
     }
     for (std::size_t m = 0; m < a.delivery.size(); ++m) {
       if (a.delivery[m] && b.delivery[m]) a.delivery[m] = blend(*a.delivery[m], wa, *b.delivery[m], wb, k());
+      if (a.delivery_at[m] && b.delivery_at[m]) a.delivery_at[m] = blend(*a.delivery_at[m], wa, *b.delivery_at[m], wb, k());
+      a.delivery_lineage[m] |= b.delivery_lineage[m];
     }
+    a.clock_lineage |= b.clock_lineage;
     if (wb > wa) {
       a.separations = b.separations;
       a.event_robots = b.event_robots;

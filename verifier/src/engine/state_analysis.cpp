@@ -12,6 +12,7 @@
 #include "p3at/executive/behaviors.hpp"
 #include "p3at/executive/frames.hpp"
 #include "p3at/executive/sonar.hpp"
+#include "engine/trigger_phase.hpp"
 
 namespace p3at::verifier::engine {
 namespace {
@@ -87,17 +88,74 @@ struct PathResult {
   /// expected firing time's offset from `cycles` (see crossing_phase()); the
   /// end pose is the one at that expected firing.
   double phase_cycles = 0.0;
+  /// The last cycle's step (end minus the pose one cycle earlier, before the
+  /// phase move) and the crossing's fraction into it (-1: none), for
+  /// settle_phases().
+  double step_x = 0.0, step_y = 0.0, step_theta = 0.0, crossing_c = -1.0;
   BaseState end;
   ErrorState error;
   std::vector<PathSample> samples;
 };
+
+/// True when the crossing's fraction c (crossing_phase() + 1/2) is meaningful:
+/// the trigger was crossed by moving toward it within the last cycle.
+bool crossing_phase_known(const mission::RobotSpec& robot, std::size_t transition, const BaseState& before,
+                          const BaseState& now, double turned_before, double turned_now) {
+  const mission::TriggerParams& trigger = robot.transitions[transition].trigger;
+  double from = 0.0, to = 0.0, threshold = 0.0;
+  if (const auto* g = std::get_if<mission::AtGoalParams>(&trigger)) {
+    from = std::hypot(g->goal.x_m - before.x_m, g->goal.y_m - before.y_m);
+    to = std::hypot(g->goal.x_m - now.x_m, g->goal.y_m - now.y_m);
+    threshold = g->radius_m;
+  } else if (const auto* h = std::get_if<mission::HasTurnedParams>(&trigger)) {
+    from = -turned_before;
+    to = -turned_now;
+    threshold = -(h->angle_deg - h->offset_deg) * kDegToRad;
+  } else {
+    return false;
+  }
+  return from > threshold && from > to;
+}
+
+/// The expected firing's phase (trigger_phase.hpp): each path's crossing time
+/// varies over its quadrature node's arc by about the difference to its
+/// neighbours' (paths are on a circle of NOISE directions), spread sd =
+/// |T_next - T_prev| / 2 / sqrt(12); the end pose is moved, along the last
+/// step, from the half-cycle average crossing_phase() assumed to the firing
+/// that spread gives (the one deterministic check when all paths alike).
+void settle_phases(std::vector<PathResult>& paths) {
+  const std::size_t n = paths.size();
+  std::vector<double> crossing(n, 0.0);
+  for (std::size_t j = 0; j < n; ++j) {
+    crossing[j] = static_cast<double>(paths[j].cycles) - 1.0 + std::max(paths[j].crossing_c, 0.0);
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    PathResult& p = paths[j];
+    if (!p.exit || p.crossing_c < 0.0) continue;
+    const PathResult& prev = paths[(j + n - 1) % n];
+    const PathResult& next = paths[(j + 1) % n];
+    double sd = 0.0;
+    if (n > 1 && prev.exit && next.exit && *prev.exit == *p.exit && *next.exit == *p.exit) {
+      sd = std::abs(crossing[(j + 1) % n] - crossing[(j + n - 1) % n]) / 2.0 / std::sqrt(12.0);
+    } else if (n > 1) {
+      sd = 1.0;  // neighbours that leave differently: the node's arc spans a lot
+    }
+    const double offset = crossing[j] + expected_check_gap(crossing[j], sd) - static_cast<double>(p.cycles);
+    const double move = offset - p.phase_cycles;
+    p.end.x_m += move * p.step_x;
+    p.end.y_m += move * p.step_y;
+    p.end.theta_rad += move * p.step_theta;
+    p.phase_cycles = offset;
+  }
+}
 
 /// One path of the NOISE quadrature. `redraw_turn_rad` = 0: the direction is
 /// held for the whole state; otherwise each redraw (every `persistence`
 /// cycles) turns it by that angle, so the path passes through differing
 /// directions as the real NOISE's redraws do.
 PathResult run_path(const StateContext& ctx, std::size_t state, const BaseState& start, const ErrorState& error_start,
-                    double noise_angle_rad, std::size_t cap, double redraw_turn_rad = 0.0) {
+                    double noise_angle_rad, std::size_t cap, double redraw_turn_rad = 0.0,
+                    std::vector<TrajectoryPoint>* record = nullptr) {
   const mission::RobotSpec& robot = *ctx.robot;
   const Kinematics& k = ctx.model->kinematics;
   const exec::BehaviorConfig config = behavior_config(robot, k);
@@ -120,6 +178,13 @@ PathResult run_path(const StateContext& ctx, std::size_t state, const BaseState&
   double turned = 0.0, turned_before = 0.0;
   BaseState before = start;
   for (std::size_t n = 0;; ++n) {
+    // Recorded until the robot has come to rest for good (a leg waiting at its
+    // goal for a message): beyond the record the pose is held (pose_at), so a
+    // long wait costs no memory.
+    if (record != nullptr) {
+      if (record->size() >= 2 && at_rest(r.end) && at_rest(record->back().base)) record = nullptr;  // for good: indices are cycles
+      else record->push_back({r.end, r.error});
+    }
     if (n >= 1) {
       if (const auto fired = fired_exit(robot, state, r.end, turned)) {
         r.exit = fired;
@@ -129,6 +194,10 @@ PathResult run_path(const StateContext& ctx, std::size_t state, const BaseState&
         // stays in whole cycles: the orderings of events in the same cycle,
         // an acknowledgement racing a delivery, are decided in whole cycles.)
         r.phase_cycles = crossing_phase(robot, *fired, before, r.end, turned_before, turned);
+        r.step_x = r.end.x_m - before.x_m;
+        r.step_y = r.end.y_m - before.y_m;
+        r.step_theta = r.end.theta_rad - before.theta_rad;
+        if (crossing_phase_known(robot, *fired, before, r.end, turned_before, turned)) r.crossing_c = r.phase_cycles + 0.5;
         r.end.x_m += r.phase_cycles * (r.end.x_m - before.x_m);
         r.end.y_m += r.phase_cycles * (r.end.y_m - before.y_m);
         r.end.theta_rad += r.phase_cycles * (r.end.theta_rad - before.theta_rad);
@@ -246,14 +315,34 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   const std::size_t cap = cycle_cap(ctx, state, start);
   const double cycle_s = ctx.model->kinematics.cycle_s;
 
+  // A state a message can interrupt keeps each path's pose versus time.
+  std::shared_ptr<LegTrajectory> trajectory;
+  if (has_trigger_kind(robot, state, mission::TriggerKind::notified)) {
+    trajectory = std::make_shared<LegTrajectory>();
+    trajectory->cycle_s = cycle_s;
+    trajectory->paths.resize(points);
+  }
   std::vector<PathResult> paths;
   paths.reserve(points);
   for (std::size_t j = 0; j < points; ++j) {
     const double angle = 2.0 * kPi * (static_cast<double>(j) + 0.5) / static_cast<double>(points);
-    paths.push_back(run_path(ctx, state, start, error_start, angle, cap));
+    paths.push_back(run_path(ctx, state, start, error_start, angle, cap, 0.0,
+                             trajectory ? &trajectory->paths[j] : nullptr));
+  }
+
+  settle_phases(paths);
+
+  // Headings are continuous per path, but two paths that turned around in
+  // opposite directions end a whole turn apart (+pi and -pi): averaged as
+  // numbers they would face the other way. Bring every end heading within pi
+  // of the first finished path's.
+  for (std::size_t j = 1; j < paths.size(); ++j) {
+    const double ref = paths[0].end.theta_rad;
+    paths[j].end.theta_rad = ref + exec::wrap_angle_rad(paths[j].end.theta_rad - ref);
   }
 
   StateAnalysis a;
+  a.trajectory = trajectory;
   const double w = 1.0 / static_cast<double>(points);
   std::vector<ErrorState> errors;
   std::vector<double> weights;

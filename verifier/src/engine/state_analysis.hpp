@@ -9,12 +9,14 @@
 /// exact under the model. Message-driven exits are left to the sequencer.
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "engine/base_motion.hpp"
 #include "engine/error_state.hpp"
+#include "engine/leg_trajectory.hpp"
 #include "engine/sonar_model.hpp"
 #include "p3at/protocols/mission/mission.hpp"
 #include "p3at/verifier/mog.hpp"
@@ -52,6 +54,9 @@ struct StateAnalysis {
   ErrorState error;                   ///< the true pose's error at the end
   std::vector<PathSample> path;       ///< every second, for separation (safety) criteria
   std::size_t cycles_simulated = 0;   ///< work done, for budgets and benchmarks
+  /// Pose versus time per NOISE path, for a motion state a message can
+  /// interrupt (one with a Notified exit); null otherwise (engine/interruption).
+  std::shared_ptr<const LegTrajectory> trajectory;
 };
 
 /// What a state's evaluation needs to know about the rest of the system.

@@ -167,11 +167,12 @@ Result<VerifyResult> verify(const mission::Mission& mission, const Models& model
   const SystemOutcome& o = *evaluated;
 
   const Point p = probabilities(o, mission, r.tmax_s, r.rmax_m);
-  r.p_time = p.time;
-  r.p_radius = p.radius;
-  r.p_joint = p.joint;
+  r.p_time = std::clamp(p.time, 0.0, 1.0);
+  r.p_radius = std::clamp(p.radius, 0.0, 1.0);
+  r.p_joint = std::clamp(p.joint, 0.0, 1.0);
   r.pruned_mass = o.pruned_mass;
   r.blocked_mass = o.blocked_mass;
+  r.loop_cutoff_mass = o.loop_cutoff_mass;
   r.branches = o.branches.size();
   r.subsystems = o.subsystems;
 
@@ -211,7 +212,10 @@ Result<VerifyResult> verify(const mission::Mission& mission, const Models& model
     Grid g;
     g.tmax = options.tmax_grid.empty() ? std::vector<double>{r.tmax_s} : options.tmax_grid;
     g.rmax = options.rmax_grid.empty() ? std::vector<double>{r.rmax_m} : options.rmax_grid;
-    for (const double t : g.tmax) g.p_time.push_back(time_probability(o, t));
+    // Sums over branches can round a hair past 1 (weights are products of
+    // split probabilities): probabilities are reported within [0, 1].
+    const auto unit = [](double q) { return std::clamp(q, 0.0, 1.0); };
+    for (const double t : g.tmax) g.p_time.push_back(unit(time_probability(o, t)));
     // Per-branch radius probabilities are shared by every Tmax: compute them once.
     std::vector<std::vector<double>> radius(o.branches.size());
     for (std::size_t b = 0; b < o.branches.size(); ++b) {
@@ -220,7 +224,7 @@ Result<VerifyResult> verify(const mission::Mission& mission, const Models& model
     for (std::size_t j = 0; j < g.rmax.size(); ++j) {
       double pr = 0.0;
       for (std::size_t b = 0; b < o.branches.size(); ++b) pr += o.branches[b].weight * radius[b][j];
-      g.p_radius.push_back(pr);
+      g.p_radius.push_back(unit(pr));
     }
     for (const double t : g.tmax) {
       std::vector<double> row(g.rmax.size(), 0.0);
@@ -229,6 +233,7 @@ Result<VerifyResult> verify(const mission::Mission& mission, const Models& model
         const double pt = o.branches[b].completion_time_s.cdf(t);
         for (std::size_t j = 0; j < g.rmax.size(); ++j) row[j] += o.branches[b].weight * pt * radius[b][j];
       }
+      for (double& v : row) v = unit(v);
       for (const double v : row) regions.push_back(classify(v, options));
       g.p_joint.push_back(std::move(row));
       g.region.push_back(std::move(regions));

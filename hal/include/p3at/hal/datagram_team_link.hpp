@@ -34,6 +34,11 @@ class DatagramTeamLink : public TeamLink {
   const std::vector<GateVerdict>& teammate_verdicts() const final { return protocol_.teammate_verdicts(); }
   const std::vector<Telemetry>& teammate_telemetry() const final { return protocol_.teammate_telemetry(); }
   const TeamLinkStats& stats() const final { return protocol_.stats(); }
+  void set_session(const std::string& session) final { protocol_.set_session(session); }
+  const std::string& session() const final { return protocol_.session(); }
+  std::optional<std::int64_t> last_heard_us(const std::string& robot) const final {
+    return protocol_.last_heard_us(robot);
+  }
 
   const TeamProtocol& protocol() const { return protocol_; }
 

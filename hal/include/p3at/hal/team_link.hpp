@@ -65,7 +65,18 @@ constexpr std::optional<GateDecision> gate_decision_from_string(std::string_view
 /// True for the decisions that let the team launch (GO and OVERRIDE).
 constexpr bool allows_launch(GateDecision decision) { return decision != GateDecision::no_go; }
 
+/// A teammate's gate nonce, as heard by the robot that publishes a verdict.
+struct HeardNonce {
+  std::string robot;
+  std::string nonce;
+  bool operator==(const HeardNonce&) const = default;
+};
+
 /// One robot's launch-gate verdict (authenticated like everything else).
+/// The last three fields make the launch an agreement of this very run
+/// (docs/launch-gate.md): `nonce` is fresh for every gate, `heard` echoes the
+/// teammates' nonces the sender has heard, `session` is set once the sender
+/// has committed to launching with exactly those teammates.
 struct GateVerdict {
   std::string robot;         ///< the sender (set by the link when publishing)
   std::string mission_hash;  ///< 64 lowercase hex digits: what the verdict is about
@@ -77,6 +88,9 @@ struct GateVerdict {
   double tmax_s = 0.0;       ///< the criteria applied
   double rmax_m = 0.0;
   std::string detail;        ///< failed criteria, or why overridden
+  std::string nonce;         ///< 32 lowercase hex digits, random, one per gate (empty only in tests of old code paths)
+  std::string session;       ///< "" until committed; then the session id (64 lowercase hex digits)
+  std::vector<HeardNonce> heard;  ///< teammates' nonces the sender has heard, at most one per teammate
 };
 
 /// Counters of what the link accepted and rejected; never reset.
@@ -89,6 +103,7 @@ struct TeamLinkStats {
   std::uint64_t rejected_bad_tag = 0;
   std::uint64_t rejected_replay = 0;  ///< sequence number not newer than the last accepted
   std::uint64_t rejected_other_mission = 0;
+  std::uint64_t rejected_other_session = 0;  ///< authenticated, but from another launch session (a replay of another run)
   std::uint64_t malformed = 0;        ///< could not be decoded at all
   std::uint64_t verdicts_accepted = 0;   ///< authenticated, newer gate verdicts from teammates
   std::uint64_t telemetry_accepted = 0;  ///< authenticated, newer telemetry from teammates
@@ -131,6 +146,17 @@ class TeamLink {
   virtual const std::vector<Telemetry>& teammate_telemetry() const = 0;
 
   virtual const TeamLinkStats& stats() const = 0;
+
+  /// The launch session this robot belongs to ("" before the gate has
+  /// committed). Every notification, status and telemetry sent carries it;
+  /// those received with any other session are dropped and counted in
+  /// rejected_other_session. Verdicts are exempt: they establish the session.
+  virtual void set_session(const std::string& session) = 0;
+  virtual const std::string& session() const = 0;
+
+  /// When (in the time passed to poll()) an authenticated message of this
+  /// session last arrived from `robot`; nullopt if none has yet.
+  virtual std::optional<std::int64_t> last_heard_us(const std::string& robot) const = 0;
 };
 
 }  // namespace p3at::hal

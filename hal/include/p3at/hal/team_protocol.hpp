@@ -93,6 +93,15 @@ class TeamProtocol {
   /// Notifications still waiting for acknowledgements.
   std::size_t unacknowledged() const { return pending_.size(); }
 
+  /// The launch session (docs/launch-gate.md): "" or 64 lowercase hex digits
+  /// (anything else is ignored). Sent in every notification, status and
+  /// telemetry; received ones of another session are counted in
+  /// rejected_other_session and dropped.
+  void set_session(const std::string& session);
+  const std::string& session() const { return session_; }
+  /// When an authenticated message of this session last arrived from `robot`.
+  std::optional<std::int64_t> last_heard_us(const std::string& robot) const;
+
  private:
   struct Pending {
     std::uint64_t seq = 0;
@@ -105,6 +114,7 @@ class TeamProtocol {
     std::optional<std::uint64_t> last_status_seq;
     std::optional<std::uint64_t> last_verdict_seq;
     std::optional<std::uint64_t> last_telemetry_seq;
+    std::optional<std::int64_t> last_heard_us;
   };
 
   TeamProtocol(TeamLinkConfig config, const TeamKey& key);
@@ -118,11 +128,13 @@ class TeamProtocol {
   void receive_verdict(std::span<const std::uint8_t> bytes);
   void receive_telemetry(std::span<const std::uint8_t> bytes);
   /// The checks every best-effort message (status, verdict, telemetry) passes
-  /// before it is kept: not our own, our mission, a roster name, a good tag, a
-  /// sequence number newer than the last one kept from that robot (which it
+  /// before it is kept: not our own, our mission, a roster name, a good tag,
+  /// our session (`session` null: not checked, for verdicts), a sequence number newer than the last one kept from that robot (which it
   /// then records). Each failure is counted; true when the message is kept.
-  bool admit(const std::string& robot, const std::string& mission_id, bool tag_ok, std::uint64_t seq,
-             std::optional<std::uint64_t> Peer::*last_seq);
+  bool admit(const std::string& robot, const std::string& mission_id, const std::string* session, bool tag_ok,
+             std::uint64_t seq, std::optional<std::uint64_t> Peer::*last_seq);
+  /// True when `session` is ours; else counts rejected_other_session.
+  bool same_session(const std::string& session);
   /// Replaces `robot`'s entry in `held` or inserts it in roster order.
   template <class Item>
   void hold(std::vector<Item>& held, const std::string& robot, const Item& item);
@@ -137,6 +149,7 @@ class TeamProtocol {
   std::uint64_t next_telemetry_seq_;
   std::uint64_t next_verdict_seq_;
   std::optional<std::int64_t> now_us_;  ///< latest time seen; none before the first receive()/tick()
+  std::string session_;
   std::vector<Pending> pending_;        ///< in sequence order
   std::map<std::string, Peer> peers_;
   std::vector<TeamStatus> teammate_status_;

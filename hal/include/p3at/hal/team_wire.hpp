@@ -49,11 +49,17 @@ inline constexpr std::size_t kMaxTeamTextBytes = 256;   ///< phase, state, reaso
 inline constexpr std::size_t kMaxTeamRecipients = 32;
 inline constexpr std::size_t kTeamTagBytes = 32;        ///< crypto_auth_BYTES
 inline constexpr std::size_t kMissionHashHexDigits = 64;  ///< a gate verdict's mission_hash: BLAKE2b-256 in hex
+inline constexpr std::size_t kSessionHexDigits = 64;      ///< a session id: BLAKE2b-256 in hex ("" before launch)
+inline constexpr std::size_t kGateNonceHexDigits = 32;    ///< a gate nonce: 16 random bytes in hex
+
+/// True for exactly `digits` lowercase hexadecimal digits.
+bool is_lower_hex(std::string_view text, std::size_t digits);
 
 /// p3at_lcm.notification_t, as our code sees it.
 struct NotificationWire {
   std::int64_t utime_us = 0;  ///< sender's clock when sent (informational)
   std::string mission_id;
+  std::string session;        ///< "" or 64 lowercase hex digits
   std::string sender;
   std::uint64_t seq = 0;      ///< < 2^63; 0 in an acknowledgement
   std::string message;
@@ -67,6 +73,7 @@ struct NotificationWire {
 struct StatusWire {
   std::int64_t utime_us = 0;
   std::string mission_id;
+  std::string session;
   std::uint64_t seq = 0;  ///< < 2^63
   TeamStatus status;      ///< status.robot is the sender; p_success must be finite
 };
@@ -75,6 +82,7 @@ struct StatusWire {
 struct TelemetryWire {
   std::int64_t utime_us = 0;
   std::string mission_id;
+  std::string session;
   std::uint64_t seq = 0;  ///< < 2^63; counters of `telemetry` must be < 2^63 too
   Telemetry telemetry;    ///< telemetry.robot is the sender
 };
@@ -85,7 +93,9 @@ struct VerdictWire {
   std::string mission_id;
   std::uint64_t seq = 0;  ///< < 2^63
   GateVerdict verdict;    ///< verdict.robot is the sender; mission_hash is 64 lowercase hex
-                          ///< digits, detail at most kMaxTeamTextBytes; every number finite
+                          ///< digits, detail at most kMaxTeamTextBytes; every number finite;
+                          ///< nonce 32 lowercase hex digits, session "" or 64, at most
+                          ///< kMaxTeamRecipients heard entries, each a name and a nonce
 };
 
 /// A decoded message and whether its tag verified under the key (false for a

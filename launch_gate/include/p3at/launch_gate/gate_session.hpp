@@ -25,17 +25,22 @@ struct SessionOptions {
   /// this long, and on until every teammate has been heard from or timeout_us
   /// (from the start) has passed.
   std::int64_t refusal_linger_us = 1'000'000;
+  /// A robot that has committed (docs/launch-gate.md) waits this long past
+  /// timeout_us for its teammates' commitments before it gives up in doubt.
+  std::int64_t doubt_us = 5'000'000;
 };
 
 struct SessionResult {
   Agreement agreement;
   bool interrupted = false;                         ///< `stop` was set before a decision
   std::vector<hal::TeamNotification> early;         ///< notifications received meanwhile: hand them to the executive
+  hal::GateVerdict published;                       ///< the last verdict published (on launch: GO with the session; keep publishing it)
   std::uint64_t verdicts_published = 0;
   std::int64_t waited_us = 0;                       ///< from start to decision
 };
 
-/// Runs the gate with `own` (own.robot set) for the team `roster`, reading
+/// Runs the gate with `own` (own.robot and own.nonce set: fresh_gate_nonce())
+/// for the team `roster`, reading
 /// `clock` for every time (publishing, polling, the timeout). `pace(deadline_us)`
 /// waits until about `deadline_us` (mission_exec: the robot's SIPs, so its
 /// connection stays alive; default: clock.sleep_until_us). Returns once

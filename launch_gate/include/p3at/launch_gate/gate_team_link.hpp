@@ -47,6 +47,12 @@ class GateTeamLink final : public hal::TeamLink {
   const std::vector<hal::GateVerdict>& teammate_verdicts() const override { return inner_.teammate_verdicts(); }
   const std::vector<hal::Telemetry>& teammate_telemetry() const override { return inner_.teammate_telemetry(); }
   const hal::TeamLinkStats& stats() const override { return inner_.stats(); }
+  void set_session(const std::string& session) override { inner_.set_session(session); }
+  const std::string& session() const override { return inner_.session(); }
+  /// In link_clock time (the real link's), not the executive's.
+  std::optional<std::int64_t> last_heard_us(const std::string& robot) const override {
+    return inner_.last_heard_us(robot);
+  }
 
   // ---- the gate's additions
   /// Notifications received while the gate was deciding: delivered first by the next poll().

@@ -21,6 +21,7 @@ std::uint64_t run_seed(std::uint64_t campaign_seed, std::uint64_t run_index);
 
 struct CampaignOptions {
   std::uint64_t runs = 1;
+  std::uint64_t first_run = 0;              ///< makes runs first_run .. first_run + runs - 1 (a shard)
   std::uint64_t seed = 1;                   ///< campaign seed; run i uses run_seed(seed, i)
   unsigned jobs = 0;                        ///< worker threads; 0 = hardware concurrency
   RunOptions run;                           ///< for every run (log_transitions is forced off: runs interleave)
@@ -34,7 +35,7 @@ using ProgressFn = std::function<void(std::uint64_t done, std::uint64_t total)>;
 /// The number of threads a campaign with these options uses (>= 1, <= runs).
 unsigned campaign_jobs(const CampaignOptions& options);
 
-/// Runs the campaign; result i is run i. Blocks until every run is done. An
+/// Runs the campaign; result i is run first_run + i. Blocks until every run is done. An
 /// exception thrown by a run (a scenario the simulator cannot build) stops
 /// the other workers and is rethrown here.
 std::vector<RunResult> run_campaign(const TeamScenario& scenario, const CampaignOptions& options,

@@ -12,6 +12,8 @@ namespace p3at::team_sim {
 
 /// `run,seed,outcome,time_s,dist_<robot>_m,...,closest_approach_m`
 std::string csv_header(const mission::Mission& mission);
+/// The same for these robot names (a merged campaign has its robots' names, not the mission).
+std::string csv_header(const std::vector<std::string>& robot_names);
 /// One row matching csv_header(); text fields quoted when needed.
 std::string csv_row(const RunResult& run);
 

@@ -2,7 +2,8 @@
 // `vipars validate`'s run (docs/validation.md): the validation campaign, N
 // fast-time runs of the real executive against the simulated hardware on J
 // threads, and the fraction that met the criteria, with 95 % Wilson intervals,
-// printed as text or JSON, optionally one CSV row per run.
+// printed as text or JSON, optionally one CSV row per run; or one shard of
+// it, written as a part for `vipars merge` (docs/cluster.md).
 
 #include <cstdint>
 #include <string>
@@ -26,6 +27,8 @@ struct ValidateOptions {
   double timeout_s = 900.0;
   bool json = false;
   std::string csv_file;
+  std::string shard;      ///< "I/N": only shard I of N's runs, written as a part (docs/cluster.md)
+  std::string part_file;  ///< where a shard writes its part
 };
 
 /// Runs the campaign and prints the report; returns the exit status

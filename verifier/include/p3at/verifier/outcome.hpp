@@ -63,6 +63,10 @@ struct SystemOutcome {
   std::vector<Branch> branches;   ///< weights sum to 1 - pruned_mass - blocked_mass
   double pruned_mass = 0.0;       ///< ordering mass dropped to keep within Budget::max_branches
   double blocked_mass = 0.0;      ///< mass of branches where some robot can never finish (deadlock)
+  /// Mass of the laps of an FSA loop beyond the budget (a robot entering the
+  /// same state more than Budget::max_events / 100 times, at least once, in one
+  /// branch): the tail-recursion unrolled lap by lap, the rest counted as failure.
+  double loop_cutoff_mass = 0.0;
   std::size_t subsystems = 0;     ///< TR subsystems evaluated (Def. 10 steps), summed over branches
   std::size_t ordering_splits = 0;  ///< events where more than one robot could plausibly fire first
 };

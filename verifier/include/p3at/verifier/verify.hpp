@@ -68,6 +68,7 @@ struct VerifyResult {
   std::vector<CriterionVerdict> criteria;
   double pruned_mass = 0.0;
   double blocked_mass = 0.0;
+  double loop_cutoff_mass = 0.0;  ///< SystemOutcome::loop_cutoff_mass
   std::size_t branches = 0;
   std::size_t subsystems = 0;
 };

@@ -12,6 +12,7 @@ inline constexpr int kExitGateNoGo = 4;       ///< launch gate: this robot or a 
 inline constexpr int kExitGateMismatch = 5;   ///< launch gate: a teammate verified a different mission hash
 inline constexpr int kExitGateSilent = 6;     ///< launch gate: a teammate sent no verdict within --gate-timeout
 inline constexpr int kExitGateCannotRun = 7;  ///< launch gate: no models file, or the verifier cannot evaluate
+inline constexpr int kExitGateInDoubt = 8;    ///< launch gate: committed, but the teammates' commitments never came
 
 inline constexpr const char* kExitHelp =
     "Exit status:\n"
@@ -23,6 +24,8 @@ inline constexpr const char* kExitHelp =
     "  4  NO-GO: this robot's verdict or a teammate's\n"
     "  5  a teammate verified a different mission hash\n"
     "  6  a teammate sent no verdict within --gate-timeout\n"
-    "  7  the gate cannot run: no models file, or the verifier cannot evaluate the mission";
+    "  7  the gate cannot run: no models file, or the verifier cannot evaluate the mission\n"
+    "  8  in doubt: this robot committed to launch but never heard its teammates commit; it did not move,\n"
+    "     a teammate may have (a lost message; docs/launch-gate.md)";
 
 }  // namespace p3at::mission_exec

@@ -1,0 +1,159 @@
+#include "engine/interruption.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "p3at/executive/frames.hpp"
+
+namespace p3at::verifier::engine {
+namespace {
+
+// Below this spread of positions over τ the interruption is one bin: the
+// robot stands still (or τ is sure) and splitting would only cost branches.
+constexpr double kOneBinSpreadM = 0.02;
+
+BaseState lerp(const BaseState& a, const BaseState& b, double f) {
+  BaseState out;
+  out.x_m = a.x_m + f * (b.x_m - a.x_m);
+  out.y_m = a.y_m + f * (b.y_m - a.y_m);
+  out.theta_rad = a.theta_rad + f * (b.theta_rad - a.theta_rad);
+  out.trans_mps = a.trans_mps + f * (b.trans_mps - a.trans_mps);
+  out.rot_radps = a.rot_radps + f * (b.rot_radps - a.rot_radps);
+  return out;
+}
+
+}  // namespace
+
+TrajectoryPoint pose_at(const LegTrajectory& leg, std::size_t path, double t_s) {
+  const std::vector<TrajectoryPoint>& p = leg.paths.at(path);
+  if (p.empty()) return {};
+  const double n = std::max(0.0, t_s / leg.cycle_s);
+  const double last = static_cast<double>(p.size() - 1);
+  if (n >= last) return p.back();
+  const std::size_t i = static_cast<std::size_t>(std::floor(n));
+  const double f = n - static_cast<double>(i);
+  TrajectoryPoint out;
+  out.base = lerp(p[i].base, p[i + 1].base, f);
+  out.error.mean = p[i].error.mean + f * (p[i + 1].error.mean - p[i].error.mean);
+  out.error.cov = p[i].error.cov + f * (p[i + 1].error.cov - p[i].error.cov);
+  return out;
+}
+
+void truncated_moments(const Mixture1& x, double lo, double hi, double& probability, double& mean, double& var) {
+  double mass = 0.0, m1 = 0.0, m2 = 0.0;
+  for (const Component1& c : x.components) {
+    if (!(c.weight > 0.0)) continue;
+    if (!(c.var > 0.0)) {
+      if (c.mean > lo && c.mean <= hi) {
+        mass += c.weight;
+        m1 += c.weight * c.mean;
+        m2 += c.weight * c.mean * c.mean;
+      }
+      continue;
+    }
+    const double s = std::sqrt(c.var);
+    const double a = std::isfinite(lo) ? (lo - c.mean) / s : -std::numeric_limits<double>::infinity();
+    const double b = std::isfinite(hi) ? (hi - c.mean) / s : std::numeric_limits<double>::infinity();
+    const double z = normal_cdf(b) - normal_cdf(a);
+    if (!(z > 1e-15)) continue;
+    const double pa = std::isfinite(a) ? normal_pdf(a) : 0.0;
+    const double pb = std::isfinite(b) ? normal_pdf(b) : 0.0;
+    const double apa = std::isfinite(a) ? a * pa : 0.0;
+    const double bpb = std::isfinite(b) ? b * pb : 0.0;
+    const double mu = c.mean + s * (pa - pb) / z;
+    const double v = c.var * std::max(0.0, 1.0 + (apa - bpb) / z - ((pa - pb) / z) * ((pa - pb) / z));
+    mass += c.weight * z;
+    m1 += c.weight * z * mu;
+    m2 += c.weight * z * (v + mu * mu);
+  }
+  const double total = [&] {
+    double t = 0.0;
+    for (const Component1& c : x.components) t += std::max(c.weight, 0.0);
+    return t;
+  }();
+  probability = total > 0.0 ? mass / total : 0.0;
+  if (mass > 0.0) {
+    mean = m1 / mass;
+    var = std::max(0.0, m2 / mass - mean * mean);
+  } else {
+    mean = var = 0.0;
+  }
+}
+
+double mixture_quantile(const Mixture1& x, double p) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const Component1& c : x.components) {
+    const double reach = 9.0 * std::sqrt(std::max(c.var, 0.0));
+    lo = std::min(lo, c.mean - reach);
+    hi = std::max(hi, c.mean + reach);
+  }
+  if (!(lo <= hi)) return 0.0;
+  for (int i = 0; i < 100 && hi - lo > 1e-9 * std::max(1.0, std::abs(hi)); ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (x.cdf(mid) < p) lo = mid;
+    else hi = mid;
+  }
+  return hi;
+}
+
+std::vector<InterruptionBin> interruption_bins(const LegTrajectory& leg, const Mixture1& tau_s, std::size_t max_bins) {
+  std::vector<InterruptionBin> out;
+  const std::size_t paths = leg.paths.size();
+  if (paths == 0 || tau_s.components.empty()) return out;
+  const double w = 1.0 / static_cast<double>(paths);
+
+  // How far the robot moves over τ's spread decides whether one bin will do.
+  const double mean = tau_s.mean(), sd = std::sqrt(std::max(0.0, tau_s.variance()));
+  double moved = 0.0;
+  for (std::size_t j = 0; j < paths; ++j) {
+    const BaseState a = pose_at(leg, j, mean - sd).base, b = pose_at(leg, j, mean + sd).base;
+    moved = std::max(moved, std::hypot(b.x_m - a.x_m, b.y_m - a.y_m));
+  }
+  const std::size_t bins = moved < kOneBinSpreadM ? 1 : std::max<std::size_t>(1, max_bins);
+
+  double edge = -std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < bins; ++k) {
+    const double next = k + 1 == bins ? std::numeric_limits<double>::infinity()
+                                      : mixture_quantile(tau_s, static_cast<double>(k + 1) / static_cast<double>(bins));
+    InterruptionBin bin;
+    truncated_moments(tau_s, edge, next, bin.probability, bin.tau_mean_s, bin.tau_var_s2);
+    edge = next;
+    if (!(bin.probability > 0.0)) continue;
+    std::vector<ErrorState> errors;
+    Eigen::Vector2d mean_xy = Eigen::Vector2d::Zero();
+    std::vector<Eigen::Vector2d> points;
+    BaseState avg;
+    // Headings averaged within pi of path 0's (paths that turned around in
+    // opposite directions are a whole turn apart as continuous angles).
+    const double ref_theta = pose_at(leg, 0, bin.tau_mean_s).base.theta_rad;
+    for (std::size_t j = 0; j < paths; ++j) {
+      TrajectoryPoint p = pose_at(leg, j, bin.tau_mean_s);
+      p.base.theta_rad = ref_theta + exec::wrap_angle_rad(p.base.theta_rad - ref_theta);
+      errors.push_back(p.error);
+      points.emplace_back(p.base.x_m, p.base.y_m);
+      mean_xy += w * points.back();
+      avg.x_m += w * p.base.x_m;
+      avg.y_m += w * p.base.y_m;
+      avg.theta_rad += w * p.base.theta_rad;
+      avg.trans_mps += w * p.base.trans_mps;
+      avg.rot_radps += w * p.base.rot_radps;
+      // The motion within the bin: the path's velocity over one cycle each side.
+      const BaseState before = pose_at(leg, j, bin.tau_mean_s - leg.cycle_s).base;
+      const BaseState after = pose_at(leg, j, bin.tau_mean_s + leg.cycle_s).base;
+      const Eigen::Vector2d v((after.x_m - before.x_m) / (2.0 * leg.cycle_s), (after.y_m - before.y_m) / (2.0 * leg.cycle_s));
+      bin.within += w * v * v.transpose() * bin.tau_var_s2;
+    }
+    bin.base = avg;
+    const std::vector<double> ws(paths, w);
+    bin.error = combine(errors.data(), ws.data(), paths);
+    for (const Eigen::Vector2d& p : points) {
+      bin.offsets.push_back(p - mean_xy);
+      bin.spread += w * (p - mean_xy) * (p - mean_xy).transpose();
+    }
+    out.push_back(std::move(bin));
+  }
+  return out;
+}
+
+}  // namespace p3at::verifier::engine

@@ -1,0 +1,31 @@
+#pragma once
+/// A motion state's pose as a function of time, per NOISE quadrature path:
+/// what a message interrupting the state (a Notified transition out of a
+/// GoToGuarded or a Spin: a robot recalled mid-leg, a patrol left mid-beat)
+/// needs to know to put the robot where the interruption finds it. Recorded
+/// by the state analysis only for states that a message can interrupt.
+
+#include <cstddef>
+#include <vector>
+
+#include "engine/base_motion.hpp"
+#include "engine/error_state.hpp"
+
+namespace p3at::verifier::engine {
+
+/// The odometric pose (with the base's velocities) and the true pose's error
+/// after a whole number of cycles in the state.
+struct TrajectoryPoint {
+  BaseState base;
+  ErrorState error;
+};
+
+struct LegTrajectory {
+  double cycle_s = 0.1;
+  /// paths[j][n]: quadrature path j (equal weights) after n cycles; n = 0 is
+  /// the entry. A path's list ends at the cycle its own exit fired (or at the
+  /// state's cycle cap): a later time finds the robot where the list ends.
+  std::vector<std::vector<TrajectoryPoint>> paths;
+};
+
+}  // namespace p3at::verifier::engine

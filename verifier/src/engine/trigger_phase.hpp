@@ -1,0 +1,21 @@
+#pragma once
+/// Where within its last cycle a trigger fires (issue 13 item 5). The
+/// executive checks AtGoal and HasTurned once per cycle, so a real run whose
+/// threshold crossing falls at continuous time T (in cycles from the state's
+/// entry) fires at the first check after it, ceil(T). Over runs, T varies:
+/// where it varies by a cycle or more (NOISE's direction changes the path
+/// within one quadrature node's arc), the firing is on average half a cycle
+/// after the crossing; where it hardly varies (no NOISE, a leg started from
+/// rest at a cycle boundary, as after a Notified), the firing is the one
+/// deterministic check after T. A deterministic path has one T; with the
+/// spread of T over its node's arc, the expected gap E[ceil(T) - T] is
+/// between the two.
+
+namespace p3at::verifier::engine {
+
+/// E[ceil(X) - X] for X ~ N(t, sd^2), in (0, 1]: 1 - frac(t) (1 at an
+/// integer) for sd = 0, tending to 1/2 as sd grows (exact sum over the
+/// integers within 8 sd).
+double expected_check_gap(double t, double sd);
+
+}  // namespace p3at::verifier::engine
