@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
-# A validation campaign on a Slurm cluster (docs/cluster.md): one shard per
-# task of a job array, then a merge job that depends on all of them.
+# A validation or cross-check campaign on a Slurm cluster (docs/cluster.md):
+# one shard per task of a job array, then a merge job that depends on all.
 #
 #   cluster/validate-campaign.sh submit DIR SHARDS [--cpus K] [--hold] -- MISSION --world WORLD --trials N [validate options]
+#   cluster/validate-campaign.sh submit DIR SHARDS [--cpus K] [--hold] -- crosscheck [crosscheck options]
 #   cluster/validate-campaign.sh rerun DIR I[,J...]    # only those shards again, then a new merge
 #   cluster/validate-campaign.sh status DIR            # each shard's progress, and the merge's outcome
 #
 # DIR (on a file system every node sees) gets the campaign's arguments, the
 # parts (shard-I-of-N.part), the logs (logs/) and the result: result.json,
-# result.txt and runs.csv, byte for byte what one unsharded
-# `vipars validate ... --json --csv` with the same seed gives.
+# result.txt and (validation) runs.csv, byte for byte what one unsharded
+# `vipars validate ... --json --csv` with the same seed gives. A cross-check
+# campaign (sharded by mission) also writes its own --out folder, as unsharded.
 # The vipars binary: $VIPARS, else the one on PATH. Slurm's own SBATCH_*
 # variables (SBATCH_PARTITION, SBATCH_TIMELIMIT, SBATCH_ACCOUNT, ...) apply
 # to every job submitted here. Prints the job ids, one per line:
@@ -18,7 +20,7 @@
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 die() { echo "validate-campaign: $*" >&2; exit 2; }
-usage() { sed -n '5,7p' "$0" | sed 's/^# *//' >&2; exit 2; }
+usage() { sed -n '5,8p' "$0" | sed 's/^# *//' >&2; exit 2; }
 
 vipars_binary() {
   local v="${VIPARS:-$(command -v vipars || true)}"
@@ -55,6 +57,8 @@ case "$cmd" in
     [ $# -gt 0 ] || die "no campaign arguments after --"
     [[ "$shards" =~ ^[1-9][0-9]*$ ]] || die "SHARDS: expected a whole number >= 1, got '$shards'"
     [[ "$cpus" =~ ^[1-9][0-9]*$ ]] || die "--cpus: expected a whole number >= 1, got '$cpus'"
+    subcommand=validate
+    if [ "$1" = crosscheck ] || [ "$1" = validate ]; then subcommand="$1"; shift; fi
     for a in "$@"; do
       case "$a" in --shard|--shard=*|--part|--part=*|--json|--csv|--csv=*|--jobs|--jobs=*)
         die "'$a' is set per shard by this script (merge writes the JSON and CSV)" ;; esac
@@ -70,7 +74,7 @@ case "$cmd" in
     {
       echo "# written by validate-campaign.sh submit; sourced by each shard"
       echo "cd $(printf '%q' "$(pwd)")"
-      declare -p cpus shards vipars | sed 's/^declare -- /declare -g /'
+      declare -p cpus shards vipars subcommand | sed 's/^declare -- /declare -g /'
       campaign_args=("$@")
       declare -p campaign_args | sed 's/^declare -a /declare -ga /'
     } > "$dir/campaign.args"

@@ -8,8 +8,10 @@
 #    JSON, the text report and the CSV byte for byte;
 # 3. the same campaign with shard 2 killed by scancel: the merge job names
 #    the missing shard; rerunning only that shard completes the campaign
-#    with the same bytes.
-# About 60 s on the shared 2-core machine (most of it the runs and Slurm's
+#    with the same bytes;
+# 4. a 3-mission cross-check campaign as 2 shards by mission: the merged
+#    lines and summary byte-identical to the unsharded campaign's.
+# About 40 s on the shared 2-core machine (most of it the runs and Slurm's
 # scheduling passes); the last line says how long it took.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -127,4 +129,17 @@ array="$(job_id array "$jobs")"; merge="$(job_id merge "$jobs")"
 [ "$(task_state "${array}_$victim")" = COMPLETED ] || fail "the rerun of shard $victim did not complete"
 same_result "$work/c2"
 say "rerun of shard $victim alone: JSON, text and CSV byte-identical to the unsharded campaign"
+# ---- 3. a cross-check campaign sharded by mission ----
+say "cross-check of 3 generated missions: unsharded, then 2 shards by mission through sbatch --array"
+cc=(crosscheck --seeds 1:3 --robots 1:2 --runs 20 --calibration-runs 4 --no-report)
+# The same --out for both (it is in the printed commands): the unsharded run's goes first.
+"$VIPARS" "${cc[@]}" --out "$work/cc-out" > "$work/cc-whole.txt" 2>/dev/null
+cp "$work/cc-out/summary.txt" "$work/cc-whole-summary.txt"
+rm -rf "$work/cc-out"
+jobs="$(bash cluster/validate-campaign.sh submit "$work/c3" 2 -- "${cc[@]}" --out "$work/cc-out")"
+merge="$(job_id merge "$jobs")"
+[ "$(wait_job "$merge")" = COMPLETED ] || { cat "$work"/c3/logs/*; fail "cross-check merge job $merge did not complete"; }
+cmp "$work/cc-whole.txt" "$work/c3/result.txt" || fail "merged cross-check lines and summary differ from the unsharded campaign's"
+cmp "$work/cc-whole-summary.txt" "$work/cc-out/summary.txt" || fail "merged cross-check summary.txt differs"
+say "cross-check by mission: lines, summary and summary.txt byte-identical to the unsharded campaign"
 say "passed in $(( $(date +%s) - start_s )) s"

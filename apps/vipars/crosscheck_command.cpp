@@ -8,11 +8,13 @@
 
 #include "commands.hpp"
 #include "p3at/crosscheck/run.hpp"
+#include "p3at/team_sim/campaign_part.hpp"
 
 namespace p3at::vipars {
 namespace {
 
 struct CrosscheckFlags {
+  std::string shard;
   std::string seeds;
   std::string robots = "1:6";
   crosscheck::CrosscheckRun run;
@@ -42,6 +44,22 @@ int run(CrosscheckFlags f) {
   f.run.min_robots = lo;
   f.run.max_robots = hi;
   f.run.report = !f.no_report;
+  if (f.shard.empty() != f.run.part_file.empty()) {
+    std::fprintf(stderr, "vipars crosscheck: --shard and --part: expected both or neither\n");
+    return kExitBadInput;
+  }
+  if (!f.shard.empty()) {
+    auto shard = team_sim::parse_shard(f.shard);
+    if (!shard) {
+      std::fprintf(stderr, "vipars crosscheck: --shard: %s\n", shard.error().message.c_str());
+      return kExitBadInput;
+    }
+    if (f.run.json) {
+      std::fprintf(stderr, "vipars crosscheck: --shard: a shard writes its part only; give --json to vipars merge\n");
+      return kExitBadInput;
+    }
+    f.run.shard = *shard;
+  }
   return crosscheck::run_crosscheck(f.run);
 }
 
@@ -80,6 +98,9 @@ void register_crosscheck(CLI::App& app, int& exit_status) {
   sub->add_option("--write-baseline", r.write_baseline, "Record this campaign's errors, plus a margin, as a baseline");
   sub->add_option("--baseline-margin", r.baseline_margin, "Margin added to generated missions' errors (default 0.03)")
       ->check(CLI::Range(0.0, 1.0));
+  sub->add_option("--shard", f->shard,
+                  "Cross-check only shard I of N's missions (I from 0), written as a part for vipars merge (docs/cluster.md)");
+  sub->add_option("--part", r.part_file, "With --shard: write the shard's part here");
   sub->callback([f, &exit_status] { exit_status = run(*f); });
 }
 

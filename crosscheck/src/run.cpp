@@ -15,6 +15,7 @@
 #include "p3at/crosscheck/baseline.hpp"
 #include "p3at/crosscheck/campaign_report.hpp"
 #include "p3at/crosscheck/result_json.hpp"
+#include "p3at/crosscheck/shard_part.hpp"
 #include "p3at/common/vipars_exit.hpp"
 
 namespace p3at::crosscheck {
@@ -81,13 +82,13 @@ std::string command_line(const CrosscheckRun& run) {
   return c;
 }
 
-// Everything after the missions: the summary, JSON, report, baseline.
-int finish(const CrosscheckRun& run, const std::vector<MissionResult>& results, const std::vector<BaselineEntry>& baseline,
-           double wall_s) {
+// The campaign's end, the same for a whole campaign and for merged shards:
+// crosscheck.json, summary.txt, stdout (text or JSON), the report, the
+// baseline, the exit status.
+int finish_campaign(const CrosscheckRun& run, const std::vector<MissionResult>& results, const std::string& command,
+                    double wall_s, const std::vector<BaselineEntry>& baseline) {
   const Bounds bounds;
   const CampaignSummary summary = summarize(results, bounds);
-  const std::string command = command_line(run);
-
   nlohmann::ordered_json doc;
   doc["command"] = command;
   doc["runs_per_mission"] = run.campaign.runs;
@@ -202,7 +203,7 @@ int run_crosscheck(const CrosscheckRun& run) {
         return kExitBadInput;
       }
     }
-    return finish(run, results, baseline, 0.0);
+    return finish_campaign(run, results, command_line(run), 0.0, baseline);
   }
   std::vector<MissionInput> inputs;
   try {
@@ -242,6 +243,21 @@ int run_crosscheck(const CrosscheckRun& run) {
     return kExitFailed;
   }
 
+  // A shard cross-checks only its share of the missions, in the same order
+  // (docs/cluster.md); the others' folders are other shards' to write.
+  const std::vector<MissionInput> all_inputs = inputs;
+  team_sim::RunRange range{0, inputs.size()};
+  if (run.shard) {
+    if (run.shard->count > inputs.size()) {
+      std::fprintf(stderr, "vipars crosscheck: --shard: %llu shards of %zu missions: expected at most one shard per mission\n",
+                   static_cast<unsigned long long>(run.shard->count), inputs.size());
+      return kExitBadInput;
+    }
+    range = team_sim::shard_runs(inputs.size(), *run.shard);
+    inputs.assign(all_inputs.begin() + static_cast<std::ptrdiff_t>(range.first),
+                  all_inputs.begin() + static_cast<std::ptrdiff_t>(range.end));
+  }
+
   const Bounds bounds;
   Progress progress(inputs.size());
   std::vector<MissionResult> results;
@@ -251,8 +267,9 @@ int run_crosscheck(const CrosscheckRun& run) {
       progress.update(i, inputs[i].name, phase, done, total);
     });
     progress.finished(i, r);
-    {
-      // As each mission ends, so that a campaign stopped part-way still leaves its results.
+    if (!run.shard) {
+      // As each mission ends, so that a campaign stopped part-way still leaves its results
+      // (a shard's record is its part: shards share the folder).
       std::ofstream partial(std::filesystem::path(run.campaign.out_dir) / "missions.jsonl", i == 0 ? std::ios::trunc : std::ios::app);
       partial << mission_result_json(r).dump() << "\n";
     }
@@ -263,7 +280,95 @@ int run_crosscheck(const CrosscheckRun& run) {
     results.push_back(std::move(r));
   }
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return finish(run, results, baseline, wall_s);
+  if (run.shard) {
+    CrosscheckPart part;
+    part.header.identity = campaign_identity(all_inputs, run.campaign);
+    part.header.command = command_line(run);
+    for (const MissionInput& m : all_inputs) part.header.names.push_back(m.name);
+    part.header.shard = *run.shard;
+    part.header.missions = range;
+    part.header.out_dir = run.campaign.out_dir;
+    part.header.gnuplot = run.campaign.gnuplot;
+    part.header.report = run.report;
+    part.header.baseline = run.baseline;
+    part.header.write_baseline = run.write_baseline;
+    part.header.baseline_margin = run.baseline_margin;
+    part.header.runs_per_mission = run.campaign.runs;
+    part.header.seed = run.campaign.seed;
+    part.results = std::move(results);
+    if (auto written = write_crosscheck_part_file(run.part_file, part); !written) {
+      std::fprintf(stderr, "vipars crosscheck: %s\n", written.error().message.c_str());
+      return kExitFailed;
+    }
+    std::fprintf(stderr, "vipars crosscheck: shard=%s part=%s missions=%zu wall_s=%.1f\n",
+                 team_sim::to_string(*run.shard).c_str(), run.part_file.c_str(), part.results.size(), wall_s);
+    return kExitOk;
+  }
+  return finish_campaign(run, results, command_line(run), wall_s, baseline);
+}
+
+int merge_crosscheck(const std::vector<std::string>& part_files, bool json) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<NamedCrosscheckPart> parts;
+  std::size_t missions_read = 0;
+  for (const std::string& file : part_files) {
+    auto part = read_crosscheck_part_file(file);
+    if (!part) {
+      std::fprintf(stderr, "vipars merge: %s\n", part.error().message.c_str());
+      return kExitBadInput;
+    }
+    missions_read += part->results.size();
+    parts.push_back({file, std::move(part).value()});
+  }
+  if (parts.empty()) {
+    std::fprintf(stderr, "vipars merge: no parts given\n");
+    return kExitBadInput;
+  }
+  const std::size_t expected = parts.front().part.header.names.size();
+  const std::size_t part_count = parts.size();
+  auto merged = merge_crosscheck_parts(std::move(parts));
+  if (!merged) {
+    std::fprintf(stderr, "vipars merge: %s\n", merged.error().message.c_str());
+    std::fprintf(stderr, "vipars merge: merged %zu of %zu missions expected from %zu parts: refused, no result written\n",
+                 missions_read, expected, part_count);
+    return kExitBadInput;
+  }
+  std::fprintf(stderr, "vipars merge: merged %zu of %zu missions expected from %zu parts\n", merged->results.size(),
+               expected, part_count);
+  // The unsharded campaign's outputs, as its shards were told them.
+  CrosscheckRun run;
+  run.campaign.out_dir = merged->header.out_dir;
+  run.campaign.gnuplot = merged->header.gnuplot;
+  run.report = merged->header.report;
+  run.baseline = merged->header.baseline;
+  run.write_baseline = merged->header.write_baseline;
+  run.baseline_margin = merged->header.baseline_margin;
+  run.campaign.runs = merged->header.runs_per_mission;
+  run.campaign.seed = merged->header.seed;
+  run.json = json;
+  std::vector<BaselineEntry> baseline;
+  if (!run.baseline.empty()) {
+    try {
+      baseline = load_baseline(run.baseline);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "vipars merge: %s\n", e.what());
+      return kExitBadInput;
+    }
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(run.campaign.out_dir, ec);
+  if (!run.json) {
+    const Bounds bounds;
+    for (const MissionResult& r : merged->results) std::printf("%s\n", mission_line(r, bounds).c_str());
+    std::fflush(stdout);
+  }
+  {
+    // The unsharded campaign's record of each mission, in order.
+    std::ofstream partial(std::filesystem::path(run.campaign.out_dir) / "missions.jsonl", std::ios::trunc);
+    for (const MissionResult& r : merged->results) partial << mission_result_json(r).dump() << "\n";
+  }
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return finish_campaign(run, merged->results, merged->command, wall_s, baseline);
 }
 
 }  // namespace p3at::crosscheck

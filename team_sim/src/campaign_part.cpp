@@ -9,14 +9,13 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <map>
 #include <ostream>
 #include <sstream>
 #include <system_error>
 #include <utility>
 
-#include "p3at/team_sim/campaign.hpp"
 #include "p3at/team_sim/empirical.hpp"
+#include "p3at/team_sim/run_seed.hpp"
 
 namespace p3at::team_sim {
 namespace {

@@ -89,10 +89,10 @@ std::string slurm_job_label() {
   return "job " + std::string(name ? name : "?") + " " + id;
 }
 
-// A shard's progress in its log (not a terminal): a line at every tenth of
-// its runs and at least once a minute, never more often than every 2 s, and
-// the last one when it is done. The shard script shows the latest in the
-// job's comment (squeue %k).
+// A shard's progress in its log (not a terminal): a line when it starts, at
+// every tenth of its runs and at least once a minute, never more often than
+// every 2 s, and the last one when it is done. The shard script shows the
+// latest in the job's comment (squeue %k).
 class ShardProgressLog {
  public:
   ShardProgressLog(std::string shard, std::string job)
@@ -104,8 +104,11 @@ class ShardProgressLog {
     const double since_last_s = std::chrono::duration<double>(now - last_).count();
     const std::uint64_t tenth = done * 10 / std::max<std::uint64_t>(total, 1);
     const bool finished = done == total;
-    if (!finished && since_last_s < 2.0) return;
-    if (!finished && tenth <= last_tenth_ && since_last_s < 60.0) return;
+    // The first call (after about 0.2 s) always prints, so squeue shows a
+    // started shard's progress at once.
+    if (printed_ && !finished && since_last_s < 2.0) return;
+    if (printed_ && !finished && tenth <= last_tenth_ && since_last_s < 60.0) return;
+    printed_ = true;
     last_ = now;
     last_tenth_ = tenth;
     const double secs = std::chrono::duration<double>(now - start_).count();
@@ -120,6 +123,7 @@ class ShardProgressLog {
   std::string prefix_;
   std::chrono::steady_clock::time_point start_, last_;
   std::uint64_t last_tenth_ = 0;
+  bool printed_ = false;
 };
 
 // The content hash a part carries: the launch gate's mission_content_hash

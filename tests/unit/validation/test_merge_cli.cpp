@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -183,4 +184,51 @@ TEST_CASE("--shard and --part misuse is bad input naming the flag") {
     CHECK(o.err.find(message) != std::string::npos);
   }
   std::remove(part.c_str());
+}
+
+// The cross-check campaign sharded by mission (docs/cluster.md): merged, the
+// same lines and summary as the unsharded campaign, and the same JSON but for
+// each mission's seconds (timings, which differ between any two runs).
+namespace {
+
+nlohmann::json without_seconds(const std::string& text) {
+  nlohmann::json j = nlohmann::json::parse(text);
+  for (auto& m : j.at("missions")) m.erase("seconds");
+  return j;
+}
+
+}  // namespace
+
+TEST_CASE("a cross-check campaign sharded by mission merges into the unsharded campaign's results") {
+  const std::string out = scratch("crosscheck-out");
+  const std::string flags = "crosscheck --seeds 1:3 --robots 1:2 --runs 20 --calibration-runs 4 --no-report --out '" + out + "'";
+  const Outcome whole_text = vipars(flags);
+  REQUIRE_MESSAGE(whole_text.status == 0, whole_text.err);
+  const std::string whole_summary = read_file(out + "/summary.txt");
+  const Outcome whole_json = vipars(flags + " --json");
+  REQUIRE(whole_json.status == 0);
+  REQUIRE(std::system(("rm -rf '" + out + "'").c_str()) == 0);
+  std::vector<std::string> parts;
+  for (int i = 0; i < 2; ++i) {
+    parts.push_back(scratch("crosscheck-" + std::to_string(i) + ".part"));
+    const Outcome o = vipars(flags + " --shard " + std::to_string(i) + "/2 --part '" + parts.back() + "'");
+    REQUIRE_MESSAGE(o.status == 0, o.err);
+  }
+  const Outcome merged_text = vipars("merge" + quoted(parts, {1, 0}));
+  CHECK(merged_text.status == 0);
+  CHECK(merged_text.out == whole_text.out);
+  CHECK(merged_text.err.find("vipars merge: merged 3 of 3 missions expected from 2 parts") != std::string::npos);
+  CHECK(read_file(out + "/summary.txt") == whole_summary);
+  const Outcome merged_json = vipars("merge" + quoted(parts, {0, 1}) + " --json");
+  CHECK(merged_json.status == 0);
+  CHECK(without_seconds(merged_json.out) == without_seconds(whole_json.out));
+
+  const Outcome missing = vipars("merge" + quoted(parts, {1}));
+  CHECK(missing.status == 2);
+  CHECK(missing.err.find("missing 1 of 2 shards: shard 0/2 (missions 0..0); rerun it with --shard 0/2") !=
+        std::string::npos);
+  const Outcome mixed = vipars("merge" + quoted(parts, {0}) + " '" + make_parts("", 2)[1] + "'");
+  CHECK(mixed.status == 2);
+  remove_all(parts);
+  REQUIRE(std::system(("rm -rf '" + out + "'").c_str()) == 0);
 }

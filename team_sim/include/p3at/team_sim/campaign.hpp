@@ -9,15 +9,10 @@
 #include <functional>
 #include <vector>
 
+#include "p3at/team_sim/run_seed.hpp"
 #include "p3at/team_sim/team_run.hpp"
 
 namespace p3at::team_sim {
-
-/// The i-th output of SplitMix64 (Steele, Lea, Flood 2014) seeded with
-/// `campaign_seed`: well-mixed seeds, so campaigns with nearby seeds share
-/// no runs. Any run can be replayed alone: `vipars simulate --runs 1
-/// --seed <run's seed>`.
-std::uint64_t run_seed(std::uint64_t campaign_seed, std::uint64_t run_index);
 
 struct CampaignOptions {
   std::uint64_t runs = 1;

@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "p3at/common/result.hpp"
-#include "p3at/team_sim/team_run.hpp"
+#include "p3at/team_sim/run_result.hpp"
 
 namespace p3at::team_sim {
 

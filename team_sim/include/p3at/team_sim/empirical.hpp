@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "p3at/team_sim/team_run.hpp"
+#include "p3at/team_sim/run_result.hpp"
 
 namespace p3at::team_sim {
 

@@ -9,6 +9,7 @@
 
 #include "p3at/protocols/mission/mission.hpp"
 #include "p3at/sim/world_config.hpp"
+#include "p3at/team_sim/run_result.hpp"
 
 namespace p3at::team_sim {
 
@@ -16,30 +17,6 @@ struct RunOptions {
   double timeout_s = 900.0;          ///< simulated seconds before a run counts as timed out
   double settle_s = 5.0;             ///< after the last robot ends, keep acknowledging this long at most
   bool log_transitions = false;      ///< executive log lines on stderr (noisy for many runs)
-};
-
-struct RobotResult {
-  std::string name;
-  std::string phase;                 ///< "finished", "aborted", "running" (timed out)
-  std::string reason;                ///< why aborted
-  double end_time_s = 0.0;           ///< when its FSA ended (or the run's end)
-  double true_x_m = 0.0, true_y_m = 0.0;  ///< true final position (world frame)
-  double odom_x_m = 0.0, odom_y_m = 0.0;  ///< where it believed it was
-  double dist_to_goal_m = 0.0;       ///< true distance to its goal (RobotSpec::goal)
-  double cycle_p50_us = 0.0;         ///< the executive's compute time per cycle (measured, not simulated)
-  double cycle_p99_us = 0.0;
-};
-
-struct RunResult {
-  std::uint64_t run = 0;
-  std::uint64_t seed = 0;
-  std::string outcome;               ///< "success" when every robot finished its FSA, else the reason
-  double time_s = 0.0;               ///< when the last robot finished (mission completion time)
-  double closest_approach_m = 0.0;   ///< smallest true centre distance between any two robots
-  std::uint64_t cycles = 0;
-  std::vector<RobotResult> robots;
-
-  bool success() const { return outcome == "success"; }
 };
 
 /// Prepared once per campaign: the world with the mission's robots placed at
