@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # The project's test command: installs what is needed, then builds and runs
 # every test. This is what .ci/run calls.
-#   1. release build: unit and hardware-in-the-loop (sitl) tests, then a
-#      sharded validation campaign through a real single-node Slurm (root only),
-#      then the fault campaign (scripts/fault-campaign.py: 50 faults)
+#   1. release build: unit and hardware-in-the-loop (sitl) tests, the accuracy
+#      gate (verify against validate, docs/crosscheck.md), then a sharded
+#      validation campaign through a real single-node Slurm (root only), then
+#      the fault campaign (scripts/fault-campaign.py: 50 faults)
 #   2. the same tests under AddressSanitizer + UndefinedBehaviorSanitizer
 #   3. libFuzzer targets, each for a bounded time (P3AT_FUZZ_SECONDS, default 20;
 #      longer runs locally: P3AT_FUZZ_SECONDS=600 bash scripts/test.sh)
@@ -20,8 +21,8 @@ step() { printf '\n==== %s ====\n' "$*"; }
 
 step "release build"
 bash scripts/build.sh release
-step "release tests (unit, sitl)"
-ctest --test-dir build/release -L 'unit|sitl' --output-on-failure -j "$jobs"
+step "release tests (unit, sitl, accuracy)"
+ctest --test-dir build/release -L 'unit|sitl|accuracy' --output-on-failure -j "$jobs"
 step "sharded validation on a local Slurm (about 40 s)"
 bash scripts/test-slurm.sh build/release/bin
 

@@ -90,6 +90,9 @@ void register_crosscheck(CLI::App& app, int& exit_status) {
   sub->add_option("--out", r.campaign.out_dir, "The campaign's folder: index.html, crosscheck.json, missions/NAME/ (default crosscheck-out)");
   sub->add_flag("--json", r.json, "Print the campaign's JSON instead of text");
   sub->add_flag("--no-report", f->no_report, "No figures, pages or index.html");
+  sub->add_flag("--from-results", r.from_results,
+                "Run nothing: the summary, JSON and report of the missions already in --out DIR/missions.jsonl "
+                "(a campaign stopped part-way, or several appended)");
   sub->add_option("--gnuplot", r.campaign.gnuplot, "gnuplot to draw with (default gnuplot)");
   sub->add_option("--baseline", r.baseline, "Fail (exit 1) when a mission is worse than this file allows (the CI gate)");
   sub->add_option("--write-baseline", r.write_baseline, "Record this campaign's errors, plus a margin, as a baseline");

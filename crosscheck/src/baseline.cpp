@@ -25,11 +25,17 @@ std::vector<BaselineEntry> baseline_from(const std::vector<MissionResult>& resul
       e.time_tolerant = lim(r.score.time.tolerant);
       e.radius_tolerant = lim(r.score.radius.tolerant);
       e.joint_tolerant = lim(r.score.joint.tolerant);
-      e.overconfident_go_cells = r.score.overconfident_go_cells + r.score.overconfident_go_cells / 10 + 3;
+      e.overconfident_go_cells = r.score.overconfident_go_cells + r.score.overconfident_go_cells / 10 + 1;
     } else {
-      e.time = e.time_tolerant = b.time;
-      e.radius = e.radius_tolerant = b.radius;
-      e.joint = e.joint_tolerant = b.joint;
+      // Shipped missions: within the bounds with the 1 % shift, never an
+      // over-confident GO, and strictly no worse than the bound or than
+      // measured (1,000 runs' own noise reaches a few hundredths strictly).
+      e.time_tolerant = b.time;
+      e.radius_tolerant = b.radius;
+      e.joint_tolerant = b.joint;
+      e.time = std::max(b.time, lim(r.score.time.strict));
+      e.radius = std::max(b.radius, lim(r.score.radius.strict));
+      e.joint = std::max(b.joint, lim(r.score.joint.strict));
       e.overconfident_go_cells = 0;
     }
     out.push_back(e);

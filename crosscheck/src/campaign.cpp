@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "calibrate_world.hpp"
+#include "p3at/common/log.hpp"
 #include "p3at/crosscheck/grid_choice.hpp"
 #include "p3at/crosscheck/result_json.hpp"
 #include "p3at/mission_gen/generator.hpp"
@@ -186,8 +187,25 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
     const verifier::Models models = verifier::load_models_file((folder / "models.yaml").string());
     r.calibrate_s = seconds_since(t0);
 
-    // 2. The validation runs (the grid is chosen afterwards: any grid costs nothing once the runs are in).
-    const double timeout_s = std::max(300.0, 3.0 * mission.criteria.tmax_s);
+    // 2. The verifier's curves on a coarse grid, up to 4 Tmax and 4 Rmax (at
+    // least 3 m): where they rise, and so how long a validation run may take.
+    say("verifying");
+    t0 = std::chrono::steady_clock::now();
+    verifier::VerifyOptions coarse;
+    const double t_far = std::max(4.0 * mission.criteria.tmax_s, 10.0);
+    const double r_far = std::max(4.0 * mission.criteria.rmax_m, 3.0);
+    for (int k = 1; k <= 240; ++k) coarse.tmax_grid.push_back(t_far * k / 240.0);
+    for (int k = 1; k <= 240; ++k) coarse.rmax_grid.push_back(r_far * k / 240.0);
+    Result<verifier::VerifyResult> first = verifier::verify(mission, models, coarse);
+    if (!first) throw std::runtime_error("verify: " + first.error().message);
+    const Rise vt = rise_of_curve(first->grid->tmax, first->grid->p_time);
+    const Rise vr = rise_of_curve(first->grid->rmax, first->grid->p_radius);
+    r.verify_s = seconds_since(t0);
+
+    // 3. The validation runs (the grid is chosen afterwards: any grid costs
+    // nothing once the runs are in). A run may take twice the mission's Tmax,
+    // and 1.25 times as long as the verifier's curve takes to reach its top.
+    const double timeout_s = std::max({120.0, 2.0 * mission.criteria.tmax_s, vt.found ? 1.25 * vt.hi : 0.0});
     const std::uint64_t vseed = mission_validation_seed(o.seed, input.name);
     t0 = std::chrono::steady_clock::now();
     team_sim::TeamScenario scenario(mission, world);
@@ -197,12 +215,21 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
     co.jobs = o.jobs;
     co.run.timeout_s = timeout_s;
     say("validating", 0, o.runs);
-    const std::vector<team_sim::RunResult> runs =
-        team_sim::run_campaign(scenario, co, [&](std::uint64_t done, std::uint64_t total) { say("validating", done, total); });
+    // The executives' warnings (a Spin faster than the robot turns, once per
+    // run) would fill stderr with thousands of copies; the runs' outcomes say it all.
+    const log::Level level = log::threshold();
+    log::threshold() = log::Level::error;
+    std::vector<team_sim::RunResult> runs;
+    try {
+      runs = team_sim::run_campaign(scenario, co, [&](std::uint64_t done, std::uint64_t total) { say("validating", done, total); });
+    } catch (...) {
+      log::threshold() = level;
+      throw;
+    }
+    log::threshold() = level;
     r.validate_s = seconds_since(t0);
 
-    // 3. The grid: where either side's curves rise.
-    say("verifying");
+    // 4. The grid: where either side's curves rise.
     t0 = std::chrono::steady_clock::now();
     std::vector<double> times, dists;
     for (const team_sim::RunResult& run : runs) {
@@ -210,15 +237,6 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
       dists.push_back(team_sim::worst_distance_m(run));
     }
     const Rise wt = rise_of_sample(times), wr = rise_of_sample(dists);
-    const double t_far = std::max({3.0 * mission.criteria.tmax_s, wt.found ? 1.2 * wt.hi : 0.0, 10.0});
-    const double r_far = std::max({3.0 * mission.criteria.rmax_m, wr.found ? 1.2 * wr.hi : 0.0, 1.0});
-    verifier::VerifyOptions coarse;
-    for (int k = 1; k <= 240; ++k) coarse.tmax_grid.push_back(t_far * k / 240.0);
-    for (int k = 1; k <= 240; ++k) coarse.rmax_grid.push_back(r_far * k / 240.0);
-    Result<verifier::VerifyResult> first = verifier::verify(mission, models, coarse);
-    if (!first) throw std::runtime_error("verify: " + first.error().message);
-    const Rise vt = rise_of_curve(first->grid->tmax, first->grid->p_time);
-    const Rise vr = rise_of_curve(first->grid->rmax, first->grid->p_radius);
     const auto span = [](const Rise& a, const Rise& b, double fallback_lo, double fallback_hi) {
       if (!a.found && !b.found) return std::pair{fallback_lo, fallback_hi};
       if (!a.found) return std::pair{b.lo, b.hi};
@@ -232,13 +250,13 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
     r.tmax_range = tax.range();
     r.rmax_range = rax.range();
 
-    // 4. Verify on the grid.
+    // 5. Verify on the grid.
     verifier::VerifyOptions vo;
     vo.tmax_grid = tax.values;
     vo.rmax_grid = rax.values;
     Result<verifier::VerifyResult> verified = verifier::verify(mission, models, vo);
     if (!verified) throw std::runtime_error("verify: " + verified.error().message);
-    r.verify_s = seconds_since(t0);
+    r.verify_s += seconds_since(t0);
     r.verify_p_joint = verified->p_joint;
     r.verify_go = verified->go;
     nlohmann::json vj = vipars::verify_json(mission, *verified);
@@ -251,7 +269,7 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
     vj["command"] = verify_cmd;
     write_text(folder / "verify.json", vj.dump(2) + "\n");
 
-    // 5. The validation on the same grid, and shifted by -1 % and +1 % for the tolerant scores.
+    // 6. The validation on the same grid, and shifted by -1 % and +1 % for the tolerant scores.
     const team_sim::EmpiricalGrid mid = team_sim::empirical_grid(runs, tax.values, rax.values);
     const team_sim::EmpiricalGrid lo =
         team_sim::empirical_grid(runs, scaled(tax.values, 1 - kShiftFraction), scaled(rax.values, 1 - kShiftFraction));
@@ -287,7 +305,7 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
     r.score = score_mission(tax.values, rax.values, verified->grid->p_time, verified->grid->p_radius, vjoint,
                             curve_points(mid.time, lo.time, hi.time), curve_points(mid.radius, lo.radius, hi.radius), wjoint);
 
-    // 6. How to redo it: the whole mission, or each step in its folder.
+    // 7. How to redo it: the whole mission, or each step in its folder.
     r.reproduce = o.command_prefix + " " +
                   (input.generator_seed ? input.source : "--missions " + input.source + (input.models_yaml.empty() ? "" : " --shipped-models")) +
                   " --runs " + std::to_string(o.runs) + " --seed " + std::to_string(o.seed) +

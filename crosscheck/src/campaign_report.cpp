@@ -72,7 +72,7 @@ std::string cdf_script(const Bounds& b, std::size_t n, const std::string& termin
   s << "# The fraction of missions whose max |verify - validate| is at most x (`gnuplot errors_cdf.gp`).\n"
     << terminal << "\nset output '" << out << "'\n"
     << "set multiplot layout 1,3 title 'Cross-check: max |verify - validate| over " << n << " missions'\n"
-    << "set xlabel 'max |verify - validate|'\nset ylabel 'fraction of missions'\nset yrange [0:1.02]\nset xrange [0:*]\n"
+    << "set xlabel 'max |verify - validate|'\nset ylabel 'fraction of missions'\nset yrange [0:1.02]\nset xrange [0:1]\n"
     << "set key bottom right\nset grid\n";
   const char* names[3] = {"time curve", "radius curve", "joint surface"};
   const double bounds[3] = {b.time, b.radius, b.joint};

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace p3at::crosscheck {
 namespace {
@@ -118,6 +119,63 @@ Json mission_result_json(const MissionResult& r) {
   j["folder"] = r.folder;
   j["reproduce"] = r.reproduce;
   return j;
+}
+
+namespace {
+
+double number(const nlohmann::json& j) { return j.is_null() ? std::numeric_limits<double>::quiet_NaN() : j.get<double>(); }
+
+ErrorSummary error_from_json(const nlohmann::json& j) {
+  ErrorSummary e;
+  e.strict = j.at("strict").get<double>();
+  e.tolerant = j.at("tolerant").get<double>();
+  e.strict_at_tmax_s = number(j.at("strict_at").at("tmax_s"));
+  e.strict_at_rmax_m = number(j.at("strict_at").at("rmax_m"));
+  e.strict_verify = j.at("strict_at").at("verify").get<double>();
+  e.strict_validate = j.at("strict_at").at("validate").get<double>();
+  e.tolerant_at_tmax_s = number(j.at("tolerant_at").at("tmax_s"));
+  e.tolerant_at_rmax_m = number(j.at("tolerant_at").at("rmax_m"));
+  e.tolerant_verify = j.at("tolerant_at").at("verify").get<double>();
+  e.tolerant_validate = j.at("tolerant_at").at("validate").get<double>();
+  e.points = j.at("points").get<std::size_t>();
+  return e;
+}
+
+}  // namespace
+
+MissionResult mission_result_from_json(const nlohmann::json& j) {
+  MissionResult r;
+  r.name = j.at("name").get<std::string>();
+  r.source = j.at("source").get<std::string>();
+  if (!j.at("generator_seed").is_null()) r.generator_seed = j.at("generator_seed").get<std::uint64_t>();
+  r.robots = j.at("robots").get<std::size_t>();
+  if (!j.at("error").is_null()) r.error = j.at("error").get<std::string>();
+  r.evaluable = j.at("evaluable").get<bool>();
+  r.approximations = j.at("approximations").get<std::vector<std::string>>();
+  r.calibration_note = j.at("calibration").get<std::string>();
+  r.runs = j.at("runs").get<std::uint64_t>();
+  r.failed_runs = j.at("failed_runs").get<std::uint64_t>();
+  r.tmax_range = j.at("tmax_range").get<std::string>();
+  r.rmax_range = j.at("rmax_range").get<std::string>();
+  r.criteria_tmax_s = j.at("criteria").at("tmax_s").get<double>();
+  r.criteria_rmax_m = j.at("criteria").at("rmax_m").get<double>();
+  r.verify_p_joint = j.at("criteria").at("verify_p_joint").get<double>();
+  r.validate_p_joint = j.at("criteria").at("validate_p_joint").get<double>();
+  r.verify_go = j.at("criteria").at("verify_go").get<bool>();
+  r.score.time = error_from_json(j.at("time"));
+  r.score.radius = error_from_json(j.at("radius"));
+  r.score.joint = error_from_json(j.at("joint"));
+  r.score.overconfident_go_cells = j.at("overconfident_go_cells").get<std::size_t>();
+  for (const nlohmann::json& c : j.at("overconfident_worst")) {
+    r.score.overconfident.push_back({c.at("tmax_s").get<double>(), c.at("rmax_m").get<double>(), c.at("verify").get<double>(),
+                                     c.at("validate").get<double>(), c.at("ci_low").get<double>(), c.at("ci_high").get<double>()});
+  }
+  r.calibrate_s = j.at("seconds").at("calibrate").get<double>();
+  r.validate_s = j.at("seconds").at("validate").get<double>();
+  r.verify_s = j.at("seconds").at("verify").get<double>();
+  r.folder = j.at("folder").get<std::string>();
+  r.reproduce = j.at("reproduce").get<std::string>();
+  return r;
 }
 
 Json summary_json(const CampaignSummary& s, const Bounds& b) {

@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -44,7 +45,8 @@ class Progress {
     std::fprintf(stderr, "\r[%.*s%.*s] %zu/%zu %-14s %s", filled, "##############################", width - filled,
                  "..............................", index + 1, missions_, name.c_str(), phase.c_str());
     if (phase == "validating") std::fprintf(stderr, " %llu/%llu runs", static_cast<unsigned long long>(done), static_cast<unsigned long long>(total));
-    std::fprintf(stderr, ", %.0f s left      ", left);
+    if (frac > 0.01) std::fprintf(stderr, ", %.0f s left", left);
+    std::fprintf(stderr, "      ");
     std::fflush(stderr);
   }
   void finished(std::size_t index, const MissionResult& r) {
@@ -65,6 +67,7 @@ class Progress {
 
 std::string command_line(const CrosscheckRun& run) {
   std::string c = run.campaign.command_prefix;
+  if (run.from_results) return c + " --from-results --out " + run.campaign.out_dir;
   if (run.first_seed) {
     c += " --seeds " + std::to_string(*run.first_seed) + ":" + std::to_string(*run.last_seed) + " --robots " +
          std::to_string(run.min_robots) + ":" + std::to_string(run.max_robots);
@@ -116,8 +119,22 @@ int finish_campaign(const CrosscheckRun& run, const std::vector<MissionResult>& 
         std::printf("  %s: %zu approximation%s\n", r.name.c_str(), r.approximations.size(), r.approximations.size() == 1 ? "" : "s");
       }
     }
-    std::printf("redo one mission: see %s/missions/NAME/commands.txt, e.g.\n  %s\n", run.campaign.out_dir.c_str(),
-                results.front().reproduce.empty() ? command.c_str() : results.front().reproduce.c_str());
+    // The worst failing missions, each with the one command that redoes it alone.
+    std::vector<const MissionResult*> failing;
+    for (const MissionResult& r : results) {
+      if (mission_fails(r, bounds) && !r.reproduce.empty()) failing.push_back(&r);
+    }
+    std::stable_sort(failing.begin(), failing.end(), [](const MissionResult* a, const MissionResult* b) {
+      const auto worst = [](const MissionResult* m) {
+        return std::max({m->score.time.tolerant, m->score.radius.tolerant, m->score.joint.tolerant});
+      };
+      return worst(a) > worst(b);
+    });
+    if (!failing.empty()) std::printf("worst failing missions, each redone alone by:\n");
+    for (std::size_t k = 0; k < failing.size() && k < 10; ++k) {
+      std::printf("  %s: %s\n", failing[k]->name.c_str(), failing[k]->reproduce.c_str());
+    }
+    std::printf("every mission's files and commands: %s/missions/NAME/ (commands.txt)\n", run.campaign.out_dir.c_str());
   }
   if (run.report) {
     ReportOptions ro;
@@ -154,6 +171,40 @@ int finish_campaign(const CrosscheckRun& run, const std::vector<MissionResult>& 
 }  // namespace
 
 int run_crosscheck(const CrosscheckRun& run) {
+  if (run.from_results) {
+    // A campaign's missions.jsonl (possibly of a campaign stopped part-way): only the output.
+    std::vector<MissionResult> results;
+    const std::filesystem::path path = std::filesystem::path(run.campaign.out_dir) / "missions.jsonl";
+    std::ifstream in(path);
+    if (!in) {
+      std::fprintf(stderr, "vipars crosscheck: cannot read %s\n", path.string().c_str());
+      return kExitBadInput;
+    }
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n) {
+      if (line.empty()) continue;
+      try {
+        results.push_back(mission_result_from_json(nlohmann::json::parse(line)));
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "vipars crosscheck: %s:%d: not a mission's result (%s)\n", path.string().c_str(), n, e.what());
+        return kExitBadInput;
+      }
+    }
+    if (results.empty()) {
+      std::fprintf(stderr, "vipars crosscheck: %s holds no missions\n", path.string().c_str());
+      return kExitBadInput;
+    }
+    std::vector<BaselineEntry> baseline;
+    if (!run.baseline.empty()) {
+      try {
+        baseline = load_baseline(run.baseline);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "vipars crosscheck: %s\n", e.what());
+        return kExitBadInput;
+      }
+    }
+    return finish_campaign(run, results, command_line(run), 0.0, baseline);
+  }
   std::vector<MissionInput> inputs;
   try {
     if (run.first_seed) inputs = generated_inputs(*run.first_seed, *run.last_seed, run.min_robots, run.max_robots);

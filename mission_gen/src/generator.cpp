@@ -50,7 +50,9 @@ GeneratedMission generate(const GenerateOptions& options) {
     }
     x -= kTeamWeights[n - 1];
   }
-  const int layout = static_cast<int>(rng.weighted({0.4, 0.3, 0.3}));
+  // A hallway for teams of up to three (one lane each); rooms for any team.
+  const int layout = robots <= 3 ? static_cast<int>(rng.weighted({0.4, 0.3, 0.3}))
+                                 : (rng.chance(0.55) ? 0 : 2);
 
   TeamPlan team = draw_routes(rng, robots, layout == 1);
   draw_messages(rng, team);

@@ -140,20 +140,22 @@ Op spin_op(GenRng& rng) {
 }
 
 // A point `len` away from `from` in a direction near `heading`, inside the
-// team's area; corridors keep to the x axis.
-Point2 next_point(GenRng& rng, Point2 from, double& heading, double len, bool corridor, double half_extent) {
+// team's area; in a hallway, along it in the robot's own lane (people give
+// each robot its side of a hallway: head-on robots block each other).
+Point2 next_point(GenRng& rng, Point2 from, double& heading, double len, bool corridor, double lane_y, double half_extent) {
   for (int attempt = 0; attempt < 20; ++attempt) {
-    double h;
+    Point2 p;
+    double h = heading;
     if (corridor) {
-      h = (rng.chance(0.75) ? heading : heading + kPi) + rng.uniform(-0.12, 0.12);
+      h = rng.chance(0.75) ? heading : heading + kPi;
+      p = Point2{round_to(from.x_m + len * std::cos(h), 0.1), round_to(lane_y + rng.uniform(-0.2, 0.2), 0.1)};
     } else {
       const double turn = rng.chance(0.2) ? rng.uniform(-0.5, 0.5) : (rng.chance(0.5) ? 1 : -1) * rng.uniform(0.9, 2.6);
       h = heading + turn;
+      p = Point2{round_to(from.x_m + len * std::cos(h), 0.1), round_to(from.y_m + len * std::sin(h), 0.1)};
     }
-    const Point2 p{round_to(from.x_m + len * std::cos(h), 0.1), round_to(from.y_m + len * std::sin(h), 0.1)};
-    const double y_limit = corridor ? 2.5 : half_extent;
     const double leg = dist(p, from);  // after rounding: every leg 1-25 m
-    if (leg >= 1.0 && leg <= 25.0 && std::abs(p.x_m) <= half_extent + 0.01 && std::abs(p.y_m) <= y_limit + 0.01) {
+    if (leg >= 1.0 && leg <= 25.0 && std::abs(p.x_m) <= half_extent + 0.01 && std::abs(p.y_m) <= half_extent + 0.01) {
       heading = corridor ? (std::cos(h) >= 0 ? 0.0 : kPi) : h;
       return p;
     }
@@ -161,10 +163,12 @@ Point2 next_point(GenRng& rng, Point2 from, double& heading, double len, bool co
   // Cornered: head back toward the middle (at least a metre).
   heading = std::abs(from.x_m) + std::abs(from.y_m) < 1.0 ? 0.0 : std::atan2(corridor ? 0.0 : -from.y_m, -from.x_m);
   const double l = std::max(1.2, std::min(len, std::hypot(from.x_m, corridor ? 0.0 : from.y_m)));
-  return Point2{round_to(from.x_m + l * std::cos(heading), 0.1), round_to(from.y_m + l * std::sin(heading), 0.1)};
+  return Point2{round_to(from.x_m + l * std::cos(heading), 0.1),
+                corridor ? lane_y : round_to(from.y_m + l * std::sin(heading), 0.1)};
 }
 
 RobotPlan draw_robot(GenRng& rng, std::size_t index, Point2 start, bool corridor, double half_extent) {
+  const double lane_y = start.y_m;
   RobotPlan r;
   r.name = "robot" + std::to_string(index + 1);
   r.start = start;
@@ -174,7 +178,7 @@ RobotPlan draw_robot(GenRng& rng, std::size_t index, Point2 start, bool corridor
   Point2 at = start;
   for (std::size_t l = 0; l < legs; ++l) {
     const double len = leg_length(rng);
-    const Point2 p = next_point(rng, at, heading, len, corridor, half_extent);
+    const Point2 p = next_point(rng, at, heading, len, corridor, lane_y, half_extent);
     if (dist(p, at) < 1.0) continue;  // cornered into a leg nobody would write
     r.ops.push_back(go_op(rng, p, dist(p, at), r.max_speed_mps));
     at = p;
@@ -183,7 +187,7 @@ RobotPlan draw_robot(GenRng& rng, std::size_t index, Point2 start, bool corridor
   if (r.ops.empty() || r.ops.back().kind != Op::Kind::go) {
     // Every robot ends with a leg: the goal its radius criterion is measured from.
     double h = heading;
-    const Point2 p = next_point(rng, at, h, std::max(2.0, leg_length(rng)), corridor, half_extent);
+    const Point2 p = next_point(rng, at, h, std::max(2.0, leg_length(rng)), corridor, lane_y, half_extent);
     r.ops.push_back(go_op(rng, p, dist(p, at), r.max_speed_mps));
   }
   const Point2 first = r.ops.front().goal;
@@ -257,8 +261,10 @@ TeamPlan draw_routes(GenRng& rng, std::size_t robots, bool corridor) {
     bool found = false;
     for (int attempt = 0; attempt < 60 && !found; ++attempt) {
       const double spread = 2.0 + 1.2 * static_cast<double>(robots);
+      // In a hallway each robot has its lane, 2 m from the next.
+      const double lane = (static_cast<double>(i) - static_cast<double>(robots - 1) / 2.0) * 2.0;
       Point2 start{round_to(rng.uniform(-spread, spread), 0.5),
-                   corridor ? round_to(rng.uniform(-2.0, 2.0), 0.5) : round_to(rng.uniform(-spread, spread), 0.5)};
+                   corridor ? lane : round_to(rng.uniform(-spread, spread), 0.5)};
       if (corridor) start.x_m = round_to(rng.uniform(-12.0, -12.0 + spread), 0.5);
       bool apart = true;
       for (const RobotPlan& o : team.robots) apart = apart && dist(o.start, start) >= 1.5;

@@ -61,6 +61,18 @@ std::vector<Seg> wall_with_doorways(Point2 a, Point2 b, double keep, const Keepo
     const Point2 p{a.x_m + t * (b.x_m - a.x_m), a.y_m + t * (b.y_m - a.y_m)};
     solid[static_cast<std::size_t>(i)] = point_clear(p, keepout, keep);
   }
+  // A gap narrower than 0.6 m is no doorway (a P3-AT is 0.5 m wide): the
+  // wall runs through it, a hair inside the goal clearance that made it.
+  const int min_gap = static_cast<int>(std::ceil(0.6 / (len / steps)));
+  for (int i = 1; i <= steps; ++i) {
+    if (solid[static_cast<std::size_t>(i)] || !solid[static_cast<std::size_t>(i - 1)]) continue;
+    int j = i;
+    while (j <= steps && !solid[static_cast<std::size_t>(j)]) ++j;
+    if (j <= steps && j - i < min_gap) {
+      for (int k = i; k < j; ++k) solid[static_cast<std::size_t>(k)] = true;
+    }
+    i = j;
+  }
   std::vector<Seg> pieces;
   gaps = 0;
   bool in_gap = false;
@@ -199,9 +211,22 @@ WorldPlan draw_world(GenRng& rng, const TeamPlan& team, int layout) {
     w.features.doorways += gaps;
   };
   if (layout == 2) {
+    // Where a person would put the dividing wall: of a few places across the
+    // middle, the one that leaves the most wall standing (routes cross it
+    // through doorways instead of running along it).
     const bool vertical = (room.x1 - room.x0) >= (room.y1 - room.y0);
     const double lo = vertical ? room.x0 : room.y0, hi = vertical ? room.x1 : room.y1;
-    add_divider(vertical, round_to(lo + (hi - lo) * rng.uniform(0.35, 0.65), 0.5));
+    double best_at = 0.0, best_solid = -1.0;
+    for (int c = 0; c < 6; ++c) {
+      const double at = round_to(lo + (hi - lo) * rng.uniform(0.3, 0.7), 0.5);
+      const Point2 a = vertical ? Point2{at, room.y0} : Point2{room.x0, at};
+      const Point2 b = vertical ? Point2{at, room.y1} : Point2{room.x1, at};
+      std::size_t gaps = 0;
+      double solid = 0.0;
+      for (const Seg& piece : wall_with_doorways(a, b, keep_door, keepout, gaps)) solid += dist(piece.a, piece.b);
+      if (solid > best_solid) best_solid = solid, best_at = at;
+    }
+    add_divider(vertical, best_at);
   } else if (corridor && rng.chance(0.6)) {
     const int count = 1 + static_cast<int>(rng.integer(0, 1));
     for (int c = 0; c < count; ++c) add_divider(true, round_to(rng.uniform(room.x0 + 2, room.x1 - 2), 0.5));

@@ -3,6 +3,7 @@
 
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -100,20 +101,25 @@ TEST_CASE("baseline: measured + margin for generated missions, the bounds for sh
   MissionResult gen = result("gen_1", 0.10, 0.02, 0.15, 4);
   MissionResult shipped = result("relay", 0.01, 0.01, 0.02, 0);
   shipped.generator_seed.reset();
-  const auto entries = baseline_from({gen, shipped}, Bounds{}, 0.03);
-  REQUIRE(entries.size() == 2);
+  MissionResult noisy = result("concurrent_moves", 0.01, 0.058, 0.02, 0);  // strictly over its bound, by sampling
+  noisy.generator_seed.reset();
+  const auto entries = baseline_from({gen, shipped, noisy}, Bounds{}, 0.03);
+  REQUIRE(entries.size() == 3);
+  CHECK(entries[2].radius == doctest::Approx(0.088));
+  CHECK(entries[2].radius_tolerant == 0.05);
   CHECK(entries[0].time == doctest::Approx(0.13));
   CHECK(entries[0].joint == doctest::Approx(0.18));
   CHECK(entries[0].joint_tolerant == doctest::Approx(0.105));
-  CHECK(entries[0].overconfident_go_cells == 7);
-  CHECK(entries[1].time == 0.05);
+  CHECK(entries[0].overconfident_go_cells == 5);  // 4 + 10 % + 1
+  CHECK(entries[1].time == 0.05);           // the bound: measured 0.01 + 0.03 is below it
   CHECK(entries[1].joint == 0.08);
+  CHECK(entries[1].time_tolerant == 0.05);
   CHECK(entries[1].overconfident_go_cells == 0);
 
   const std::string path = (std::filesystem::temp_directory_path() / "p3at_unit_baseline.json").string();
   std::ofstream(path) << baseline_json(entries, "test").dump(2);
   const auto loaded = load_baseline(path);
-  REQUIRE(loaded.size() == 2);
+  REQUIRE(loaded.size() == 3);
   CHECK(loaded[0].joint == doctest::Approx(0.18));
   CHECK(check_baseline({gen, shipped}, loaded).empty());
 
@@ -132,4 +138,29 @@ TEST_CASE("baseline: measured + margin for generated missions, the bounds for sh
   std::ofstream(path) << "{\"missions\": [{\"name\": 3}]}";
   CHECK_THROWS_AS(load_baseline(path), std::runtime_error);
   std::filesystem::remove(path);
+}
+
+TEST_CASE("JSON: a mission's result reads back as written (missions.jsonl, --from-results)") {
+  MissionResult r = result("gen_9", 0.12, 0.04, 0.2, 3);
+  r.score.time.strict_at_tmax_s = 180.5;
+  r.score.joint.strict_at_rmax_m = 1.25;
+  r.score.overconfident.push_back({180, 1.2, 0.9, 0.6, 0.55, 0.65});
+  r.approximations = {"a", "b"};
+  r.tmax_range = "170:190:0.5";
+  r.reproduce = "vipars crosscheck --seeds 9:9";
+  const MissionResult back = mission_result_from_json(nlohmann::json::parse(mission_result_json(r).dump()));
+  CHECK(back.name == "gen_9");
+  CHECK(back.generator_seed == r.generator_seed);
+  CHECK(back.score.time.strict == 0.12);
+  CHECK(back.score.time.strict_at_tmax_s == 180.5);
+  CHECK(std::isnan(back.score.time.strict_at_rmax_m));
+  CHECK(back.score.joint.strict_at_rmax_m == 1.25);
+  CHECK(back.score.overconfident_go_cells == 3);
+  REQUIRE(back.score.overconfident.size() == 1);
+  CHECK(back.score.overconfident[0].ci_high == 0.65);
+  CHECK(back.approximations == r.approximations);
+  CHECK(back.tmax_range == r.tmax_range);
+  CHECK(back.reproduce == r.reproduce);
+  CHECK(mission_result_json(back).dump() == mission_result_json(r).dump());
+  CHECK_THROWS(mission_result_from_json(nlohmann::json::parse("{\"name\": \"x\"}")));
 }

@@ -36,6 +36,9 @@ CampaignSummary summarize(const std::vector<MissionResult>& results, const Bound
 
 nlohmann::ordered_json mission_result_json(const MissionResult& result);
 nlohmann::ordered_json summary_json(const CampaignSummary& summary, const Bounds& bounds);
+/// Reads back what mission_result_json() wrote (missions.jsonl, score.json).
+/// Throws nlohmann::json::exception for a document of another shape.
+MissionResult mission_result_from_json(const nlohmann::json& j);
 
 /// "gen_17  3 robots  time 0.032 / 0.012  radius ...  joint ...  GO! 0  ok" (strict / tolerant).
 std::string mission_line(const MissionResult& result, const Bounds& bounds);

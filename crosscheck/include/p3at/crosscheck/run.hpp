@@ -26,6 +26,10 @@ struct CrosscheckRun {
   double baseline_margin = 0.03;
   std::optional<team_sim::Shard> shard;                 ///< only this shard's missions, written as a part
   std::string part_file;                                ///< with shard: where (docs/cluster.md)
+  /// Instead of running: the summary, JSON and report of the missions a
+  /// campaign (or several) already wrote to DIR/missions.jsonl, e.g. one
+  /// stopped part-way. campaign.out_dir is that DIR.
+  bool from_results = false;
 };
 
 /// Exit statuses: 0 done (and, with a baseline, every mission within it);

@@ -1,0 +1,135 @@
+// `vipars generate` and `vipars crosscheck` as a user runs them (the built
+// binary, a small generated one-robot mission): the campaign's results do
+// not depend on --jobs, every file of the mission's folder is there, the
+// commands it prints remake verify.json and validate.json exactly,
+// --from-results gives the same summary, a baseline it is worse than fails
+// it, and bad flags are exit 2.
+
+#include <doctest/doctest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct Outcome {
+  int status = -1;
+  std::string out, err;
+};
+
+Outcome run(const std::string& command, const fs::path& dir) {
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string full = "cd '" + dir.string() + "' && " + command + " >'" + out.string() + "' 2>'" + err.string() + "'";
+  const int raw = std::system(full.c_str());
+  Outcome o;
+  o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  o.out = read_file(out);
+  o.err = read_file(err);
+  return o;
+}
+
+const std::string kVipars = "'" + std::string(P3AT_VIPARS_BIN) + "'";
+// Seed 5 with one robot: a 30 s mission in an open room.
+const std::string kCampaign = " crosscheck --seeds 5:5 --robots 1:1 --runs 40 --calibration-runs 4 --no-report";
+
+nlohmann::json without_timing(nlohmann::json j) {
+  for (auto& m : j["missions"]) {
+    m.erase("seconds");
+    m.erase("folder");
+    m.erase("reproduce");
+  }
+  j.erase("command");
+  return j;
+}
+
+}  // namespace
+
+TEST_CASE("vipars crosscheck: the same results for any --jobs, a folder that remakes itself") {
+  const fs::path dir = fs::temp_directory_path() / ("p3at-crosscheck-cli-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const Outcome one = run(kVipars + kCampaign + " --jobs 1 --out a", dir);
+  REQUIRE(one.status == 0);
+  const Outcome two = run(kVipars + kCampaign + " --jobs 2 --out b", dir);
+  REQUIRE(two.status == 0);
+  CHECK(one.out.find("gen_5 ") == 0);
+  CHECK(one.out.find("missions 1: scored 1") != std::string::npos);
+  const auto ja = nlohmann::json::parse(read_file(dir / "a" / "crosscheck.json"));
+  const auto jb = nlohmann::json::parse(read_file(dir / "b" / "crosscheck.json"));
+  CHECK(without_timing(ja) == without_timing(jb));
+  CHECK(read_file(dir / "a/missions/gen_5/validate.json") == read_file(dir / "b/missions/gen_5/validate.json"));
+  CHECK(read_file(dir / "a/missions/gen_5/verify.json") == read_file(dir / "b/missions/gen_5/verify.json"));
+  CHECK(ja["missions"][0]["runs"] == 40);
+  CHECK(ja["summary"]["scored"] == 1);
+
+  // The folder: the mission as `vipars generate` writes it, and every document.
+  const fs::path m = dir / "a/missions/gen_5";
+  const Outcome gen = run(kVipars + " generate --seed 5 --robots 1:1 --out g", dir);
+  REQUIRE(gen.status == 0);
+  CHECK(read_file(dir / "g/mission.yaml") == read_file(m / "mission.yaml"));
+  CHECK(read_file(dir / "g/world.yaml") == read_file(m / "world.yaml"));
+  for (const char* f : {"models.yaml", "calibration.txt", "verify.json", "validate.json", "score.json", "commands.txt"}) {
+    CHECK(fs::is_regular_file(m / f));
+  }
+
+  // The documents' own commands remake them exactly.
+  const auto v = nlohmann::json::parse(read_file(m / "verify.json"));
+  const auto w = nlohmann::json::parse(read_file(m / "validate.json"));
+  std::string vc = v["command"].get<std::string>(), wc = w["command"].get<std::string>();
+  vc.replace(0, std::string("vipars").size(), kVipars);
+  wc.replace(0, std::string("vipars").size(), kVipars);
+  const Outcome vr = run(vc, m);
+  const Outcome wr = run(wc, m);
+  auto v2 = nlohmann::json::parse(vr.out), w2 = nlohmann::json::parse(wr.out);
+  v2["command"] = v["command"];
+  w2["command"] = w["command"];
+  CHECK(v2 == v);
+  CHECK(w2 == w);
+
+  // The summary again from missions.jsonl.
+  const Outcome again = run(kVipars + " crosscheck --from-results --no-report --out a", dir);
+  CHECK(again.status == 0);
+  CHECK(again.out.find("missions 1: scored 1") != std::string::npos);
+
+  // A baseline it is worse than: exit 1, naming the mission.
+  std::ofstream(dir / "tight.json") << R"({"missions": [{"name": "gen_5", "time": -1, "radius": 1, "joint": 1,
+    "time_tolerant": 1, "radius_tolerant": 1, "joint_tolerant": 1, "overconfident_go_cells": 1000}]})";
+  const Outcome worse = run(kVipars + " crosscheck --from-results --no-report --out a --baseline tight.json", dir);
+  CHECK(worse.status == 1);
+  CHECK(worse.err.find("gen_5: time strict") != std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("vipars crosscheck and generate: bad input is exit 2 with a message") {
+  const fs::path dir = fs::temp_directory_path();
+  Outcome o = run(kVipars + " crosscheck --seeds 5:5 --robots 0:3", dir);
+  CHECK(o.status == 2);
+  CHECK(o.err.find("--robots") != std::string::npos);
+  o = run(kVipars + " crosscheck --seeds 9:3", dir);
+  CHECK(o.status == 2);
+  o = run(kVipars + " crosscheck --out /tmp", dir);
+  CHECK(o.status == 2);
+  CHECK(o.err.find("no missions") != std::string::npos);
+  o = run(kVipars + " crosscheck --missions /nonexistent-folder", dir);
+  CHECK(o.status == 2);
+  o = run(kVipars + " generate --seeds 3", dir);
+  CHECK(o.status == 2);
+  o = run(kVipars + " generate --seed 1 --robots 2:7", dir);
+  CHECK(o.status == 2);
+}
