@@ -256,6 +256,8 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
     vo.rmax_grid = rax.values;
     Result<verifier::VerifyResult> verified = verifier::verify(mission, models, vo);
     if (!verified) throw std::runtime_error("verify: " + verified.error().message);
+    // Located as `vipars verify mission.yaml` (the folder's own command) locates them.
+    verifier::locate_in_mission_file(*verified, input.mission_yaml, "mission.yaml");
     r.verify_s += seconds_since(t0);
     r.verify_p_joint = verified->p_joint;
     r.verify_go = verified->go;

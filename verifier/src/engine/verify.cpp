@@ -98,9 +98,27 @@ double shared_cycle_s(const Models& models) {
 /// is the mixture's mass below the midpoint to the next one (a continuity
 /// correction). Without it a short mission's curve passes between the steps
 /// of the true staircase, up to half a cycle's mass off.
+/// A completion time the model could not define (a non-finite moment, which is
+/// a verifier bug: see undefined_completion) counts as never done: failure,
+/// never a GO.
 double time_cdf(const Mixture1& t, double tmax, double cycle_s) {
-  if (!(cycle_s > 0.0)) return t.cdf(tmax);
-  return t.cdf(cycle_s * std::floor(tmax / cycle_s + 1e-9) + 0.5 * cycle_s);
+  const double p = cycle_s > 0.0 ? t.cdf(cycle_s * std::floor(tmax / cycle_s + 1e-9) + 0.5 * cycle_s) : t.cdf(tmax);
+  return std::isfinite(p) ? p : 0.0;
+}
+
+/// The probability mass of branches whose completion time has a non-finite
+/// weight, mean or variance.
+double undefined_completion(const SystemOutcome& o) {
+  double mass = 0.0;
+  for (const Branch& b : o.branches) {
+    for (const Component1& c : b.completion_time_s.components) {
+      if (!std::isfinite(c.weight) || !std::isfinite(c.mean) || !std::isfinite(c.var)) {
+        mass += b.weight;
+        break;
+      }
+    }
+  }
+  return mass;
 }
 
 /// P(t <= Tmax): needs only the completion times, no disk integrals.
@@ -340,6 +358,13 @@ Result<VerifyResult> verify(const mission::Mission& mission, const Models& model
                        " < threshold " + fixed(r.threshold, 3) +
                        " (decided there, not at Tmax and Rmax: an approximation of this mission shifts the curves, "
                        "docs/verifier.md)");
+  }
+  // Never a GO on numbers the model could not define (counted as failure above).
+  if (const double undefined = undefined_completion(o); undefined > 0.0) {
+    r.go = false;
+    r.failed.push_back("the model could not define the completion time of " + fixed(undefined, 4) +
+                       " of the probability mass (a non-finite variance: a verifier fault, please report the "
+                       "mission); that mass is counted as failure and the mission is refused");
   }
   if (r.p_joint < r.threshold) {
     r.failed.push_back("P(t <= " + fixed(r.tmax_s, 1) + " s and every r_i <= " + fixed(r.rmax_m, 2) + " m) = " +
