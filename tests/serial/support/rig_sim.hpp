@@ -19,7 +19,9 @@ struct SimOnPeerPort {
       : process(args(extra, truth_path), scratch_path("p3at_sim.log")) {}
 
   /// Waits until the serial line's far end (QEMU) has connected `n` times in all.
-  bool line_connected(int n, double timeout_s = 10.0) {
+  // 30 s: under host load QEMU (TCG) can take several kicks to reconnect; a
+  // wait-until, so a healthy rig pays nothing for it.
+  bool line_connected(int n, double timeout_s = 30.0) {
     const std::string needle = "connections=" + std::to_string(n) + "\n";
     return wait_for_line([&] { return process.log().find(needle) != std::string::npos; }, timeout_s);
   }
