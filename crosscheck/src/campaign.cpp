@@ -21,6 +21,7 @@
 #include "p3at/mission/loader.hpp"
 #include "p3at/sim/world_config.hpp"
 #include "p3at/team_sim/campaign.hpp"
+#include "p3at/team_sim/campaign_part.hpp"
 #include "p3at/team_sim/empirical.hpp"
 #include "p3at/team_sim/team_run.hpp"
 #include "p3at/validation/validation_json.hpp"
@@ -117,6 +118,49 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// The validation runs are kept beside the mission as a one-shard campaign
+// part (the format `vipars validate --shard` writes, checksummed), whose
+// header says what they were made from.
+constexpr const char* kRunsFile = "runs.part";
+
+team_sim::CampaignHeader runs_header(const MissionInput& input, const mission::Mission& mission, std::uint64_t seed,
+                                     std::uint64_t runs, double timeout_s) {
+  team_sim::CampaignHeader h;
+  // BLAKE2b-256 over both files' bytes, each prefixed by its length so no two pairs collide by concatenation.
+  h.content_hash = team_sim::part_checksum(std::to_string(input.mission_yaml.size()) + "\n" + input.mission_yaml +
+                                           std::to_string(input.world_yaml.size()) + "\n" + input.world_yaml);
+  h.seed = seed;
+  h.trials = runs;
+  h.timeout_s = timeout_s;
+  h.tmax_s = mission.criteria.tmax_s;
+  h.rmax_m = mission.criteria.rmax_m;
+  h.tmax_axis = {h.tmax_s};
+  h.rmax_axis = {h.rmax_m};
+  h.mission_name = mission.name;
+  h.threshold = mission.criteria.threshold;
+  for (const mission::RobotSpec& r : mission.robots) h.robots.push_back(r.name);
+  h.mission_file = "mission.yaml";
+  h.world_file = "world.yaml";
+  return h;
+}
+
+// The cached runs when the folder's file holds exactly this validation; a
+// missing, damaged or different file is simply not used (and says why).
+std::optional<std::vector<team_sim::RunResult>> cached_runs(const fs::path& file, const team_sim::CampaignHeader& want) {
+  if (!fs::is_regular_file(file)) return std::nullopt;
+  Result<team_sim::CampaignPart> part = team_sim::read_part_file(file.string());
+  if (!part) {
+    log::warn("crosscheck", "not reusing " + file.string() + ": " + part.error().message);
+    return std::nullopt;
+  }
+  if (auto diff = team_sim::campaign_difference(part->header, want)) {
+    log::info("crosscheck", "not reusing " + file.string() + ": made with another " + *diff);
+    return std::nullopt;
+  }
+  if (part->shard.count != 1 || part->runs.size() != want.trials) return std::nullopt;
+  return std::move(part->runs);
+}
+
 }  // namespace
 
 std::vector<MissionInput> folder_inputs(const std::vector<std::string>& folders, bool shipped_models) {
@@ -203,30 +247,37 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
     r.verify_s = seconds_since(t0);
 
     // 3. The validation runs (the grid is chosen afterwards: any grid costs
-    // nothing once the runs are in). A run may take twice the mission's Tmax,
-    // and 1.25 times as long as the verifier's curve takes to reach its top.
-    const double timeout_s = std::max({120.0, 2.0 * mission.criteria.tmax_s, vt.found ? 1.25 * vt.hi : 0.0});
+    // nothing once the runs are in), or the folder's cached ones.
+    const double timeout_s = validation_timeout_s(mission.criteria.tmax_s);
     const std::uint64_t vseed = mission_validation_seed(o.seed, input.name);
     t0 = std::chrono::steady_clock::now();
-    team_sim::TeamScenario scenario(mission, world);
-    team_sim::CampaignOptions co;
-    co.runs = o.runs;
-    co.seed = vseed;
-    co.jobs = o.jobs;
-    co.run.timeout_s = timeout_s;
-    say("validating", 0, o.runs);
-    // The executives' warnings (a Spin faster than the robot turns, once per
-    // run) would fill stderr with thousands of copies; the runs' outcomes say it all.
-    const log::Level level = log::threshold();
-    log::threshold() = log::Level::error;
+    const team_sim::CampaignHeader header = runs_header(input, mission, vseed, o.runs, timeout_s);
     std::vector<team_sim::RunResult> runs;
-    try {
-      runs = team_sim::run_campaign(scenario, co, [&](std::uint64_t done, std::uint64_t total) { say("validating", done, total); });
-    } catch (...) {
+    if (auto cached = o.reuse_runs ? cached_runs(folder / kRunsFile, header) : std::nullopt) {
+      runs = std::move(*cached);
+      r.runs_reused = true;
+    } else {
+      team_sim::TeamScenario scenario(mission, world);
+      team_sim::CampaignOptions co;
+      co.runs = o.runs;
+      co.seed = vseed;
+      co.jobs = o.jobs;
+      co.run.timeout_s = timeout_s;
+      say("validating", 0, o.runs);
+      // The executives' warnings (a Spin faster than the robot turns, once per
+      // run) would fill stderr with thousands of copies; the runs' outcomes say it all.
+      const log::Level level = log::threshold();
+      log::threshold() = log::Level::error;
+      try {
+        runs = team_sim::run_campaign(scenario, co, [&](std::uint64_t done, std::uint64_t total) { say("validating", done, total); });
+      } catch (...) {
+        log::threshold() = level;
+        throw;
+      }
       log::threshold() = level;
-      throw;
+      const Status written = team_sim::write_part_file((folder / kRunsFile).string(), team_sim::make_part(header, {0, 1}, runs));
+      if (!written) log::warn("crosscheck", "cannot keep the runs: " + written.error().message);
     }
-    log::threshold() = level;
     r.validate_s = seconds_since(t0);
 
     // 4. The grid: where either side's curves rise.
@@ -243,7 +294,9 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
       if (!b.found) return std::pair{a.lo, a.hi};
       return std::pair{std::min(a.lo, b.lo), std::max(a.hi, b.hi)};
     };
-    const auto [tlo, thi] = span(vt, wt, 0.5 * mission.criteria.tmax_s, 1.5 * mission.criteria.tmax_s);
+    const auto [tlo, thi_wanted] = span(vt, wt, 0.5 * mission.criteria.tmax_s, 1.5 * mission.criteria.tmax_s);
+    // Past the runs' time budget the validation knows nothing: the axis stops there.
+    const double thi = std::min(thi_wanted, timeout_s);
     const auto [rlo, rhi] = span(vr, wr, 0.5 * mission.criteria.rmax_m, 1.5 * mission.criteria.rmax_m);
     const Axis tax = nice_axis(tlo, thi, o.tmax_points, 0.1);
     const Axis rax = nice_axis(rlo, rhi, o.rmax_points, 0.01);
@@ -326,5 +379,7 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
   say("done");
   return r;
 }
+
+double validation_timeout_s(double tmax_s) { return std::max(120.0, 2.0 * tmax_s); }
 
 }  // namespace p3at::crosscheck

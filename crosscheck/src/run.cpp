@@ -54,8 +54,9 @@ class Progress {
       std::fprintf(stderr, "\r%100s\r", "");
       return;
     }
-    std::fprintf(stderr, "vipars crosscheck: %zu/%zu %s %s in %.1f s\n", index + 1, missions_, r.name.c_str(),
-                 r.error.empty() ? "done" : "could not run", r.calibrate_s + r.verify_s + r.validate_s);
+    std::fprintf(stderr, "vipars crosscheck: %zu/%zu %s %s in %.1f s%s\n", index + 1, missions_, r.name.c_str(),
+                 r.error.empty() ? "done" : "could not run", r.calibrate_s + r.verify_s + r.validate_s,
+                 r.runs_reused ? " (validation runs reused from its runs.part)" : "");
   }
 
  private:

@@ -116,6 +116,46 @@ TEST_CASE("vipars crosscheck: the same results for any --jobs, a folder that rem
   fs::remove_all(dir);
 }
 
+TEST_CASE("vipars crosscheck --reuse-runs: the folder's runs give the same results; other or damaged runs are not used") {
+  const fs::path dir = fs::temp_directory_path() / ("p3at-crosscheck-reuse-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string campaign = kVipars + kCampaign + " --reuse-runs --out a";
+  const Outcome first = run(campaign, dir);
+  REQUIRE(first.status == 0);
+  const fs::path part = dir / "a/missions/gen_5/runs.part";
+  REQUIRE(fs::is_regular_file(part));
+  CHECK(first.err.find("reused") == std::string::npos);  // nothing to reuse yet
+  const auto fresh = nlohmann::json::parse(read_file(dir / "a/crosscheck.json"));
+  const std::string validate = read_file(dir / "a/missions/gen_5/validate.json");
+
+  const Outcome second = run(campaign, dir);
+  REQUIRE(second.status == 0);
+  CHECK(second.err.find("gen_5 done in") != std::string::npos);
+  CHECK(second.err.find("validation runs reused from its runs.part") != std::string::npos);
+  CHECK(without_timing(nlohmann::json::parse(read_file(dir / "a/crosscheck.json"))) == without_timing(fresh));
+  CHECK(read_file(dir / "a/missions/gen_5/validate.json") == validate);
+
+  // Another campaign seed makes other runs: the cached ones are not used.
+  const Outcome other = run(kVipars + kCampaign + " --reuse-runs --seed 2 --out a", dir);
+  REQUIRE(other.status == 0);
+  CHECK(other.err.find("reused") == std::string::npos);
+
+  // A damaged file (one byte changed) is refused by its checksum and the runs are made again.
+  (void)run(kVipars + kCampaign + " --reuse-runs --out a", dir);  // the seed-1 runs back in place
+  std::string bytes = read_file(part);
+  const std::size_t at = bytes.find("success");
+  REQUIRE(at != std::string::npos);
+  bytes[at] = 'S';
+  std::ofstream(part, std::ios::binary | std::ios::trunc) << bytes;
+  const Outcome damaged = run(campaign, dir);
+  REQUIRE(damaged.status == 0);
+  CHECK(damaged.err.find("not reusing") != std::string::npos);
+  CHECK(damaged.err.find("reused from") == std::string::npos);
+  CHECK(without_timing(nlohmann::json::parse(read_file(dir / "a/crosscheck.json"))) == without_timing(fresh));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("vipars crosscheck and generate: bad input is exit 2 with a message") {
   const fs::path dir = fs::temp_directory_path();
   Outcome o = run(kVipars + " crosscheck --seeds 5:5 --robots 0:3", dir);

@@ -46,7 +46,17 @@ struct CampaignOptions {
   std::string out_dir;                   ///< per-mission folders out_dir/missions/NAME; "" = write nothing
   std::string gnuplot = "gnuplot";       ///< floor plans of generated missions ("" = none)
   std::string command_prefix = "vipars crosscheck";  ///< for the printed reproduce commands
+  /// Take a mission's validation runs from its folder's runs.part when that
+  /// file was made from the same mission and world bytes, validation seed,
+  /// run count and timeout (the runs never depend on the verifier, so a
+  /// verifier change is re-scored without re-simulating). Changes no result.
+  bool reuse_runs = false;
 };
+
+/// The validation's per-run time budget: twice the criterion's Tmax, at least
+/// 120 s. It depends on the mission alone, never on the verifier, so cached
+/// runs stay valid while the verifier changes; the scored Tmax axis stops at it.
+double validation_timeout_s(double tmax_s);
 
 struct MissionResult {
   std::string name, source;
@@ -57,6 +67,7 @@ struct MissionResult {
   std::vector<std::string> approximations;   ///< verify's JSON "approximations", one line each
   std::string calibration_note;          ///< how the robots were calibrated
   std::uint64_t runs = 0, failed_runs = 0;
+  bool runs_reused = false;              ///< the validation came from the folder's runs.part (--reuse-runs)
   std::string tmax_range, rmax_range;    ///< the grid, A:B:STEP
   double criteria_tmax_s = 0.0, criteria_rmax_m = 0.0;
   double verify_p_joint = 0.0, validate_p_joint = 0.0;  ///< at the mission's own criteria
