@@ -21,7 +21,7 @@ constexpr std::streamoff kMaxFileBytes = 16 * 1024 * 1024;
 }  // namespace
 
 Mission parse_mission(std::string_view yaml_text, const std::string& source_name) {
-  const detail::Source src(source_name);
+  const detail::MissionSource src(source_name);
   const YAML::Node root = detail::load_single_document(src, yaml_text);
   try {
     return detail::read_mission(src, root);

@@ -59,10 +59,10 @@ Message read_message(const Source& src, const YAML::Node& node, const YAML::Mark
                      MessageMarks& marks) {
   const MapReader map(src, node, fallback, "for each message", "in message", "key", kMessageKeys);
   Message m;
-  m.name = map.name("name", "message");
+  m.name = read_name(map, "name", "message");
   marks.name = map.value_mark("name");
   marks.from = map.value_mark("from");
-  m.from = robot_ref(src, map.require("from"), marks.from, mission, "'from'");
+  m.from = robot_ref(src, map.get("from"), marks.from, mission, "'from'");
   const YAML::Node to = map.sequence("to");
   if (to.size() == 0) src.fail(map.value_mark("to"), "message '" + m.name + "' has no recipients");
   std::vector<YAML::Mark> to_marks;
@@ -150,7 +150,7 @@ Mission read_mission(const Source& src, const YAML::Node& root) {
   Mission mission;
 
   const MapReader info = top.map("mission", "in mission", {"name", "description"});
-  mission.name = info.name("name", "mission");
+  mission.name = read_name(info, "name", "mission");
   if (info.has("description")) mission.description = info.string("description");
 
   mission.criteria = read_criteria(top.map("criteria", "in criteria", kCriteriaKeys));

@@ -26,7 +26,7 @@ MapReader params_of(const MapReader& owner, const std::string& where, const YAML
 
 GoToGuardedParams parse_go_to_guarded(const MapReader& p) {
   GoToGuardedParams g;
-  g.goal = p.point("goal", kCoordinateRange);
+  g.goal = read_point(p, "goal", kCoordinateRange);
   g.dropoff_m = p.number_or("dropoff_m", kDistanceRange, g.dropoff_m);
   g.dead_zone_m = p.number_or("dead_zone_m", kDistanceRange, g.dead_zone_m);
   g.move_gain = p.number_or("move_gain", kGainRange, g.move_gain);
@@ -74,7 +74,7 @@ BehaviorParams parse_behavior(const MapReader& state, BehaviorKind kind, const Y
       return StopParams{};
     case BehaviorKind::notify: {
       const MapReader p = params_of(state, where, kind_mark, names_of({"message"}));
-      NotifyParams n{p.name("message", "message")};
+      NotifyParams n{read_name(p, "message", "message")};
       message_mark = p.value_mark("message");
       return n;
     }
@@ -89,7 +89,7 @@ AtGoalParams parse_at_goal(const MapReader& p, const State& source) {
   a.radius_m = p.number("radius_m", kPositiveDistanceRange);
   const auto* go = std::get_if<GoToGuardedParams>(&source.behavior);
   if (p.has("goal")) {
-    a.goal = p.point("goal", kCoordinateRange);
+    a.goal = read_point(p, "goal", kCoordinateRange);
   } else if (go != nullptr) {
     a.goal = go->goal;
   } else {
@@ -126,7 +126,7 @@ MessageSentParams parse_message_sent(const MapReader& p, const YAML::Mark& kind_
                                      const State& source, YAML::Mark& message_mark) {
   MessageSentParams m;
   if (p.has("message")) {
-    m.message = p.name("message", "message");
+    m.message = read_name(p, "message", "message");
     message_mark = p.value_mark("message");
     if (!sends(robot, m.message)) {
       p.source().fail(message_mark, "MessageSent on message '" + m.message + "' that robot '" + robot.name +
@@ -155,7 +155,7 @@ TriggerParams parse_trigger(const MapReader& transition, TriggerKind kind, const
       return parse_has_turned(params_of(transition, where, kind_mark, names_of({"angle_deg", "offset_deg"})));
     case TriggerKind::notified: {
       const MapReader p = params_of(transition, where, kind_mark, names_of({"message"}));
-      NotifiedParams n{p.name("message", "message")};
+      NotifiedParams n{read_name(p, "message", "message")};
       message_mark = p.value_mark("message");
       return n;
     }

@@ -65,7 +65,7 @@ State read_state(const Source& src, const YAML::Node& node, const YAML::Mark& fa
                  YAML::Mark& message_mark) {
   const MapReader map(src, node, fallback, "for each state", "in state", "key", kStateKeys);
   State state;
-  state.name = map.name("name", "state");
+  state.name = read_name(map, "name", "state");
   name_mark = map.value_mark("name");
   const std::string behavior = map.string("behavior");
   const auto kind = behavior_kind_from_string(behavior);
@@ -187,7 +187,7 @@ Point2 implied_goal(const MapReader& map, const RobotSpec& robot) {
 RobotSpec read_robot(const Source& src, const YAML::Node& node, const YAML::Mark& fallback, RobotMarks& marks) {
   const MapReader map(src, node, fallback, "for each robot", "in robot", "key", kRobotKeys);
   RobotSpec robot;
-  robot.name = map.name("name", "robot");
+  robot.name = read_name(map, "name", "robot");
   marks.name = map.value_mark("name");
 
   const MapReader start = map.map("start", "in start", {"x_m", "y_m", "theta_deg"});
@@ -195,7 +195,7 @@ RobotSpec read_robot(const Source& src, const YAML::Node& node, const YAML::Mark
   robot.start.y_m = start.number("y_m", kCoordinateRange);
   robot.start.theta_deg = start.number_or("theta_deg", kThetaRange, 0.0);
   const bool explicit_goal = map.has("goal");
-  if (explicit_goal) robot.goal = map.point("goal", kCoordinateRange);
+  if (explicit_goal) robot.goal = read_point(map, "goal", kCoordinateRange);
 
   robot.hal_url = read_url(map, "hal", "tcp://127.0.0.1:8101");
   if (map.has("lcm")) robot.lcm_url = read_url(map, "lcm", kDefaultLcmUrl);

@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string_view>
 
+#include "p3at/common/located_error.hpp"
+#include "p3at/common/world_walls.hpp"
 #include "p3at/common/yaml_document.hpp"
 #include "p3at/sim/p3at_model.hpp"
 #include "p3at/sim/world_config.hpp"
@@ -19,6 +21,17 @@ namespace p3at::sim {
 namespace {
 
 constexpr std::size_t kMaxNameLength = 32;
+
+// The shared YAML readers' errors as this loader's: WorldFileError, "file:line:column: detail".
+class WorldSource final : public yaml_reader::Source {
+ public:
+  using yaml_reader::Source::Source;
+
+ protected:
+  [[noreturn]] void raise(int line, int column, std::string detail) const override {
+    throw WorldFileError(LocatedError::format(name(), line, column, detail));
+  }
+};
 
 class Loader {
  public:
@@ -151,16 +164,12 @@ class Loader {
     return std::stoull(text);
   }
 
+  // The one reading of a world's walls (common/yaml's world_walls.hpp), the
+  // same as the verifier's `walls_from:` of this file.
   void read_walls(const YAML::Node& walls, std::vector<Segment>& out) const {
-    if (!walls.IsSequence()) fail(walls, "expected 'walls' to be a list of [x1, y1, x2, y2] in metres, got " + describe(walls));
-    for (const YAML::Node& w : walls) {
-      if (!w.IsSequence() || w.size() != 4) {
-        fail(w, "expected a wall as [x1, y1, x2, y2] in metres, got " + describe(w));
-      }
-      const Segment s{{read_number(w[0], "x1"), read_number(w[1], "y1")},
-                      {read_number(w[2], "x2"), read_number(w[3], "y2")}};
-      if (std::hypot(s.b.x - s.a.x, s.b.y - s.a.y) < 1e-6) fail(w, "expected a wall with two distinct end points");
-      out.push_back(s);
+    const WorldSource src(source_);
+    for (const yaml_reader::WallSegment& w : yaml_reader::read_walls(src, walls, walls.Mark(), "walls")) {
+      out.push_back(Segment{{w.x0_m, w.y0_m}, {w.x1_m, w.y1_m}});
     }
   }
 

@@ -1,5 +1,9 @@
 #include "p3at/common/yaml_reader.hpp"
 
+#include <charconv>
+#include <cmath>
+#include <system_error>
+
 #include "p3at/common/number_format.hpp"
 #include "p3at/common/yaml_document.hpp"
 
@@ -37,6 +41,31 @@ bool Range::contains(double v) const {
 std::string Range::describe(std::string_view what) const {
   return format_shortest(lo) + (lo_open ? " < " : " <= ") + std::string(what) + (hi_open ? " < " : " <= ") +
          format_shortest(hi);
+}
+
+std::string_view strip_plus(std::string_view text) {
+  if (text.size() > 1 && text.front() == '+' && text[1] != '-') text.remove_prefix(1);
+  return text;
+}
+
+double read_number(const Source& src, const YAML::Node& node, const YAML::Mark& mark, const std::string& label,
+                   const Range& range) {
+  const std::string text = node.IsScalar() ? node.Scalar() : std::string();
+  const std::string_view digits = strip_plus(text);
+  double value = 0.0;
+  const auto result = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  const bool parsed = result.ec == std::errc() && result.ptr == digits.data() + digits.size();
+  if (!node.IsScalar() || !may_be_number(node) || !parsed || !std::isfinite(value)) {
+    src.fail(mark, "expected a number for '" + label + "', got " + describe(node));
+  }
+  if (!range.contains(value)) {
+    const std::size_t dot = label.rfind('.');
+    const std::string_view key = dot == std::string::npos ? std::string_view(label)
+                                                          : std::string_view(label).substr(dot + 1);
+    src.fail(mark, "'" + label + "' out of range: " + yaml_document::show(text) + " (expected " +
+                       range.describe(key) + ")");
+  }
+  return value;
 }
 
 }  // namespace p3at::yaml_reader

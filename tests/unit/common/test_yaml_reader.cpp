@@ -17,7 +17,7 @@ struct TestError : LocatedError {
 
 TEST_CASE("Source::fail throws the reader's error at the node, 1-based") {
   const YAML::Node root = yaml_document::load_single("a: 1\nb: [x, 2]\n", "empty");
-  const yaml_reader::Source<TestError> src("t.yaml");
+  const yaml_reader::SourceOf<TestError> src("t.yaml");
   try {
     src.fail(root["b"].Mark(), "expected a mapping");
     FAIL("no throw");

@@ -4,7 +4,6 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -15,13 +14,14 @@
 #include "models/text_file.hpp"
 #include "models/units.hpp"
 #include "models/yaml_access.hpp"
+#include "p3at/common/world_walls.hpp"
 #include "p3at/mission/names.hpp"
 #include "p3at/verifier/models.hpp"
 
 namespace p3at::verifier {
 namespace {
 
-using models_detail::Map;
+using models_detail::MapReader;
 using models_detail::Range;
 using models_detail::Source;
 
@@ -37,7 +37,6 @@ constexpr Range kDrift{-360.0, 360.0};
 constexpr Range kCycle{0.0, 10.0, true, false};
 constexpr Range kWeight{0.0, 1e6, true, false};
 constexpr Range kDelayMs{0.0, 1e7};
-constexpr Range kCoordinate{-1e6, 1e6};
 constexpr Range kRange{0.0, 1000.0, true, false};
 
 std::string indexed(std::string_view label, std::size_t i) { return std::string(label) + "[" + std::to_string(i) + "]"; }
@@ -47,10 +46,10 @@ YAML::Mark element_mark(const YAML::Node& list, const YAML::Node& element) {
   return element.IsNull() ? list.Mark() : element.Mark();
 }
 
-Kinematics read_kinematics(const Map& parent) {
+Kinematics read_kinematics(const MapReader& parent) {
   Kinematics k;
   if (!parent.has("kinematics")) return k;
-  const Map m = parent.map("kinematics", {"cycle_s", "max_rot_vel_degps", "trans_accel_mps2", "trans_decel_mps2",
+  const MapReader m = parent.map_at("kinematics", {"cycle_s", "max_rot_vel_degps", "trans_accel_mps2", "trans_decel_mps2",
                                           "rot_accel_degps2", "rot_decel_degps2", "robot_radius_m", "rot_gain",
                                           "calibrated_speed_mps", "top_speed_mps"});
   using models_detail::degrees_to_radians;
@@ -68,10 +67,10 @@ Kinematics read_kinematics(const Map& parent) {
   return k;
 }
 
-MotionError read_motion(const Map& parent) {
+MotionError read_motion(const MapReader& parent) {
   MotionError e;
   if (!parent.has("motion")) return e;
-  const Map m = parent.map("motion", {"trans_scale", "rot_scale", "drift_deg_per_m", "trans_sd_per_sqrt_m",
+  const MapReader m = parent.map_at("motion", {"trans_scale", "rot_scale", "drift_deg_per_m", "trans_sd_per_sqrt_m",
                                       "rot_sd_per_sqrt_rad", "heading_sd_per_sqrt_m", "trans_rel_sd", "rot_rel_sd"});
   using models_detail::sd_to_var;
   e.trans_scale = m.number_or("trans_scale", kScale, e.trans_scale);
@@ -85,15 +84,16 @@ MotionError read_motion(const Map& parent) {
   return e;
 }
 
-std::vector<RobotModel> read_robots(const Map& root) {
+std::vector<RobotModel> read_robots(const MapReader& root) {
   const Source& src = root.source();
-  const YAML::Node list = root.list("robots");
+  const YAML::Node list = root.sequence("robots");
   if (list.size() == 0) src.fail(root.value_mark("robots"), "expected at least one robot in 'robots', got an empty list");
   std::vector<RobotModel> robots;
   std::map<std::string, YAML::Mark> seen;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const YAML::Node node = list[i];
-    const Map m(src, node, element_mark(list, node), indexed("robots", i), {"name", "kinematics", "motion"});
+    const MapReader m =
+        MapReader::at_path(src, node, element_mark(list, node), indexed("robots", i), {"name", "kinematics", "motion"});
     RobotModel robot;
     robot.name = m.string("name");
     if (!mission::is_valid_name(robot.name)) {  // as the mission names robots
@@ -114,9 +114,9 @@ std::vector<RobotModel> read_robots(const Map& root) {
 }
 
 // A delay mixture: a non-empty list of {weight, mean, sd} in ms, held in s.
-Mixture1 read_delay(const Map& comm, std::string_view key) {
+Mixture1 read_delay(const MapReader& comm, std::string_view key) {
   const Source& src = comm.source();
-  const YAML::Node list = comm.list(key);
+  const YAML::Node list = comm.sequence(key);
   const std::string label = comm.label(key);
   if (list.size() == 0) {
     src.fail(comm.value_mark(key), "expected at least one component {weight, mean, sd} in '" + label + "', got an empty list");
@@ -124,7 +124,7 @@ Mixture1 read_delay(const Map& comm, std::string_view key) {
   Mixture1 out;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const YAML::Node node = list[i];
-    const Map m(src, node, element_mark(list, node), indexed(label, i), {"weight", "mean", "sd"});
+    const MapReader m = MapReader::at_path(src, node, element_mark(list, node), indexed(label, i), {"weight", "mean", "sd"});
     const double weight = m.number("weight", kWeight);
     const double mean = models_detail::ms_to_s(m.number("mean", kDelayMs));
     const double var = models_detail::sd_ms_to_var_s(m.number("sd", kDelayMs));
@@ -134,37 +134,27 @@ Mixture1 read_delay(const Map& comm, std::string_view key) {
   return out;
 }
 
-CommModel read_comm(const Map& root) {
+CommModel read_comm(const MapReader& root) {
   CommModel comm;
   if (!root.has("communication")) return comm;
-  const Map m = root.map("communication", {"delivery_ms", "ack_ms"});
+  const MapReader m = root.map_at("communication", {"delivery_ms", "ack_ms"});
   if (m.has("delivery_ms")) comm.delivery_s = read_delay(m, "delivery_ms");
   if (m.has("ack_ms")) comm.ack_s = read_delay(m, "ack_ms");
   return comm;
 }
 
-// A list of walls, each [x0, y0, x1, y1] in metres.
-void read_walls(const Source& src, const YAML::Node& list, const std::string& label, std::vector<Wall>& walls) {
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const YAML::Node node = list[i];
-    const std::string wall_label = indexed(label, i);
-    const YAML::Mark mark = element_mark(list, node);
-    if (!node.IsSequence() || node.size() != 4) {
-      src.fail(mark, "expected a wall [x0, y0, x1, y1] (4 numbers, metres) for '" + wall_label + "', got " +
-                         (node.IsSequence() ? "a list of " + std::to_string(node.size()) : models_detail::describe(node)));
-    }
-    std::array<double, 4> v{};
-    for (std::size_t j = 0; j < 4; ++j) {
-      const YAML::Node element = node[j];
-      v[j] = models_detail::read_number(src, element, element_mark(node, element), indexed(wall_label, j), kCoordinate);
-    }
-    walls.push_back(Wall{v[0], v[1], v[2], v[3]});
+// A list of walls, each [x0, y0, x1, y1] in metres: the one reading of a
+// world's walls (common/yaml's world_walls.hpp), as the simulator reads them.
+void read_walls(const Source& src, const YAML::Node& list, const YAML::Mark& mark, const std::string& label,
+                std::vector<Wall>& walls) {
+  for (const yaml_reader::WallSegment& w : yaml_reader::read_walls(src, list, mark, label)) {
+    walls.push_back(Wall{w.x0_m, w.y0_m, w.x1_m, w.y1_m});
   }
 }
 
 // The top-level `walls:` of another file (a simulator world): nothing else in
 // it is read, so the world's own format may grow without breaking this.
-void read_walls_from(const Map& env, const std::string& base_dir, std::vector<Wall>& walls) {
+void read_walls_from(const MapReader& env, const std::string& base_dir, std::vector<Wall>& walls) {
   const Source& src = env.source();
   const std::string name = env.string("walls_from");
   const YAML::Mark mark = env.value_mark("walls_from");
@@ -177,7 +167,7 @@ void read_walls_from(const Map& env, const std::string& base_dir, std::vector<Wa
   if (!models_detail::read_text_file(path.string(), text, why)) {
     src.fail(mark, "cannot read the walls_from file '" + shown + "': " + why);
   }
-  const Source world(path.string());
+  const models_detail::ModelsSource world(path.string());
   const YAML::Node root = models_detail::load_document(world, text, "world file (expected a mapping with a 'walls' list)");
   try {
     if (!root.IsMap()) {
@@ -189,11 +179,7 @@ void read_walls_from(const Map& env, const std::string& base_dir, std::vector<Wa
       if (!it->first.IsScalar()) continue;
       if (it->first.Scalar() == "robots") has_robots = true;
       if (it->first.Scalar() != "walls") continue;
-      if (!it->second.IsSequence()) {
-        world.fail(it->second.IsNull() ? it->first.Mark() : it->second.Mark(),
-                   "expected a list for 'walls', got " + models_detail::describe(it->second));
-      }
-      read_walls(world, it->second, "walls", walls);
+      read_walls(world, it->second, it->second.IsNull() ? it->first.Mark() : it->second.Mark(), "walls", walls);
       return;
     }
     // A simulator world without walls is an open floor (docs/simulator.md);
@@ -206,20 +192,20 @@ void read_walls_from(const Map& env, const std::string& base_dir, std::vector<Wa
   }
 }
 
-Environment read_environment(const Map& root, const std::string& base_dir) {
+Environment read_environment(const MapReader& root, const std::string& base_dir) {
   Environment env;
   if (!root.has("environment")) return env;
-  const Map m = root.map("environment", {"walls_from", "walls", "sonar_max_range_m"});
+  const MapReader m = root.map_at("environment", {"walls_from", "walls", "sonar_max_range_m"});
   if (m.has("walls_from")) read_walls_from(m, base_dir, env.walls);
-  if (m.has("walls")) read_walls(m.source(), m.list("walls"), m.label("walls"), env.walls);
+  if (m.has("walls")) read_walls(m.source(), m.get("walls"), m.value_mark("walls"), m.label("walls"), env.walls);
   env.sonar_max_range_m = m.number_or("sonar_max_range_m", kRange, env.sonar_max_range_m);
   return env;
 }
 
-Budget read_budget(const Map& root) {
+Budget read_budget(const MapReader& root) {
   Budget b;
   if (!root.has("budget")) return b;
-  const Map m = root.map("budget", {"max_components", "max_branches", "noise_sigma_points", "max_events"});
+  const MapReader m = root.map_at("budget", {"max_components", "max_branches", "noise_sigma_points", "max_events"});
   const auto count = [&m](std::string_view key, std::int64_t hi, std::size_t fallback) {
     return m.has(key) ? static_cast<std::size_t>(m.integer(key, 1, hi)) : fallback;
   };
@@ -231,10 +217,11 @@ Budget read_budget(const Map& root) {
 }
 
 Models read_models(const Source& src, const YAML::Node& node, const std::string& base_dir) {
-  const Map root(src, node, YAML::Mark(), "", {"models", "robots", "communication", "environment", "budget"});
+  const MapReader root =
+      MapReader::at_path(src, node, YAML::Mark(), "", {"models", "robots", "communication", "environment", "budget"});
   Models models;
   models.source = src.name();
-  const Map header = root.map("models", {"version", "generated_by"});
+  const MapReader header = root.map_at("models", {"version", "generated_by"});
   const std::int64_t version = header.integer("version", 0, 1000000);
   if (version != kVersion) {
     src.fail(header.value_mark("version"), "unsupported models version " + std::to_string(version) +
@@ -251,7 +238,7 @@ Models read_models(const Source& src, const YAML::Node& node, const std::string&
 }  // namespace
 
 Models parse_models(std::string_view yaml_text, const std::string& source_name, const std::string& base_dir) {
-  const Source src(source_name);
+  const models_detail::ModelsSource src(source_name);
   const YAML::Node root =
       models_detail::load_document(src, yaml_text, "models file (expected a mapping with keys models, robots, ...)");
   try {

@@ -1,32 +1,59 @@
 #pragma once
 // Typed, located reading of yaml-cpp nodes: the pieces every YAML reader of
 // the project shares (the mission loader, the verifier's robot-models
-// reader): where an error is, what a node is, numeric ranges. Each reader
-// keeps its own mapping reader (their messages name keys differently) and
-// throws its own LocatedError subclass through Source<Error>.
+// reader, the world files' walls): where an error is, what a node is,
+// numeric ranges, checked numbers. Each reader throws its own LocatedError
+// subclass through a SourceOf<Error>; the readers' code sees only Source.
+// The mapping reader built on these is yaml_map.hpp.
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstdlib>
 #include <string>
 #include <string_view>
 #include <utility>
 
 namespace p3at::yaml_reader {
 
-/// Where errors are reported: the source's name; fail() throws `Error` (a
-/// LocatedError subclass) with the mark's 1-based line and column.
-template <class Error>
+/// Where errors are reported: the source's name; fail() throws the reader's
+/// error (see SourceOf) with the mark's 1-based line and column, or with no
+/// position for a null mark.
 class Source {
  public:
   explicit Source(std::string name) : name_(std::move(name)) {}
+  Source(const Source&) = delete;
+  Source& operator=(const Source&) = delete;
+  virtual ~Source() = default;
+
   [[noreturn]] void fail(const YAML::Mark& mark, std::string detail) const {
-    if (mark.is_null()) throw Error(name_, 0, 0, std::move(detail));
-    throw Error(name_, mark.line + 1, mark.column + 1, std::move(detail));
+    if (mark.is_null()) {
+      raise(0, 0, std::move(detail));
+    } else {
+      raise(mark.line + 1, mark.column + 1, std::move(detail));
+    }
+    std::abort();  // not reached: raise() throws (a virtual call's [[noreturn]] is not seen by the compiler)
   }
   const std::string& name() const { return name_; }
 
+ protected:
+  /// Throws the reader's error; line 0 when there is no position.
+  [[noreturn]] virtual void raise(int line, int column, std::string detail) const = 0;
+
  private:
   std::string name_;
+};
+
+/// A Source whose errors are `Error`, constructed as Error(name, line, column,
+/// detail) (a LocatedError subclass, or any type with that constructor).
+template <class Error>
+class SourceOf final : public Source {
+ public:
+  using Source::Source;
+
+ protected:
+  [[noreturn]] void raise(int line, int column, std::string detail) const override {
+    throw Error(name(), line, column, std::move(detail));
+  }
 };
 
 /// "line:column", 1-based.
@@ -46,5 +73,15 @@ struct Range {
   bool contains(double v) const;
   std::string describe(std::string_view what) const;
 };
+
+/// A plain (or !!int/!!float tagged) scalar read as a finite number in
+/// `range`; else fails at `mark`: "expected a number for 'label', got ..." or
+/// "'label' out of range: text (expected lo <= key <= hi)", where key is the
+/// last dotted part of `label` ("cycle_s" of "robots[0].kinematics.cycle_s").
+double read_number(const Source& src, const YAML::Node& node, const YAML::Mark& mark, const std::string& label,
+                   const Range& range);
+
+/// `text` without a leading '+' (YAML allows one; std::from_chars does not).
+std::string_view strip_plus(std::string_view text);
 
 }  // namespace p3at::yaml_reader
