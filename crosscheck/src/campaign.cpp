@@ -15,6 +15,7 @@
 
 #include "calibrate_world.hpp"
 #include "p3at/common/log.hpp"
+#include "p3at/common/number_format.hpp"
 #include "p3at/crosscheck/grid_choice.hpp"
 #include "p3at/crosscheck/result_json.hpp"
 #include "p3at/mission_gen/generator.hpp"
@@ -91,12 +92,6 @@ MissionInput folder_input(const fs::path& dir, bool shipped_models) {
   in.source = dir.string();
   if (shipped_models && fs::is_regular_file(dir / "models.yaml")) in.models_yaml = read_text(dir / "models.yaml");
   return in;
-}
-
-std::string fmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
 }
 
 // The validation at each axis value, and shifted by -1 % and +1 %.
@@ -344,7 +339,7 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
     vs.mission_file = "mission.yaml";
     nlohmann::ordered_json wj = vipars::validation_json(vs);
     const std::string validate_cmd = "vipars validate mission.yaml --world world.yaml --trials " + std::to_string(o.runs) +
-                                      " --seed " + std::to_string(vseed) + " --timeout " + fmt(timeout_s) +
+                                      " --seed " + std::to_string(vseed) + " --timeout " + format_general(timeout_s, 10) +
                                       " --tmax-range " + tax.range() + " --rmax-range " + rax.range() + " --json";
     wj["command"] = validate_cmd;
     write_text(folder / "validate.json", wj.dump(2) + "\n");

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "p3at/common/number_format.hpp"
 #include "p3at/report/report_build.hpp"
 #include "p3at/report/report_data.hpp"
 
@@ -128,12 +129,6 @@ std::string make_page(const MissionResult& r, const std::string& gnuplot) {
   return "";
 }
 
-std::string fmt3(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3f", v);
-  return buf;
-}
-
 }  // namespace
 
 std::vector<std::string> write_campaign_report(const std::vector<MissionResult>& results, const CampaignSummary& summary,
@@ -197,9 +192,9 @@ std::vector<std::string> write_campaign_report(const std::vector<MissionResult>&
       h << "<td>" << r->robots << "</td><td class=\"l\" colspan=\"6\">could not run: " << html_escape(r->error) << "</td>";
     } else {
       const MissionScore& s = r->score;
-      h << "<td>" << r->robots << "</td><td>" << fmt3(s.time.strict) << " / " << fmt3(s.time.tolerant) << "</td><td>"
-        << fmt3(s.radius.strict) << " / " << fmt3(s.radius.tolerant) << "</td><td>" << fmt3(s.joint.strict) << " / "
-        << fmt3(s.joint.tolerant) << "</td><td>" << s.overconfident_go_cells << "</td><td>" << (r->evaluable ? "yes" : "no")
+      h << "<td>" << r->robots << "</td><td>" << format_fixed(s.time.strict, 3) << " / " << format_fixed(s.time.tolerant, 3) << "</td><td>"
+        << format_fixed(s.radius.strict, 3) << " / " << format_fixed(s.radius.tolerant, 3) << "</td><td>" << format_fixed(s.joint.strict, 3) << " / "
+        << format_fixed(s.joint.tolerant, 3) << "</td><td>" << s.overconfident_go_cells << "</td><td>" << (r->evaluable ? "yes" : "no")
         << "</td><td class=\"l\">" << (s.within(b, false) ? "within" : s.within(b, true) ? "within with 1 % shift" : "outside")
         << "</td>";
     }

@@ -4,21 +4,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <cstdlib>
+
+#include "p3at/common/number_format.hpp"
 
 namespace p3at::crosscheck {
 
 double round15(double x) {
   if (x == 0.0 || !std::isfinite(x)) return x;
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.15g", x);
-  return std::strtod(buf, nullptr);
+  return std::strtod(format_general(x, 15).c_str(), nullptr);
 }
 
 std::string Axis::range() const {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "%.15g:%.15g:%.15g", first, last, step);
-  return buf;
+  return format_general(first, 15) + ":" + format_general(last, 15) + ":" + format_general(step, 15);
 }
 
 Rise rise_of_curve(const std::vector<double>& axis, const std::vector<double>& p, double tail) {

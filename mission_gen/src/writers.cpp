@@ -8,15 +8,14 @@
 #include <string>
 
 #include "gen_internal.hpp"
+#include "p3at/common/number_format.hpp"
 
 namespace p3at::mission_gen {
 
 std::string num(double x) {
   double r = std::round(x * 1e9) / 1e9;
   if (r == 0.0) r = 0.0;  // no "-0"
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.10g", r);
-  return buf;
+  return format_general(r, 10);
 }
 
 namespace {

@@ -14,6 +14,7 @@
 #include <system_error>
 #include <utility>
 
+#include "p3at/common/number_format.hpp"
 #include "p3at/team_sim/empirical.hpp"
 #include "p3at/team_sim/run_seed.hpp"
 
@@ -26,13 +27,6 @@ constexpr int kVersion = 1;
 Error invalid(std::string message) { return make_error(Error::Code::invalid_argument, std::move(message)); }
 
 // ---- numbers and text fields ----
-
-// Shortest text that reads back to the same double (inf and nan included).
-std::string real(double value) {
-  std::array<char, 64> buf{};
-  const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), value);
-  return std::string(buf.data(), r.ptr);
-}
 
 // Fields are tab-separated and records end at a newline, so a text field
 // (an outcome with its reason, a path, a name) escapes those and '\'.
@@ -87,12 +81,12 @@ std::string list(const std::vector<T>& values, F&& format) {
 std::string counts_list(const std::vector<std::uint64_t>& v) {
   return list(v, [](std::uint64_t c) { return std::to_string(c); });
 }
-std::string reals_list(const std::vector<double>& v) { return list(v, real); }
+std::string reals_list(const std::vector<double>& v) { return list(v, format_shortest); }
 
 std::string run_line(const RunResult& run) {
-  std::string line = "run\t" + std::to_string(run.run) + "\t" + std::to_string(run.seed) + "\t" + real(run.time_s) +
-                     "\t" + real(run.closest_approach_m);
-  for (const auto& r : run.robots) line += "\t" + escape(r.phase) + "\t" + real(r.dist_to_goal_m);
+  std::string line = "run\t" + std::to_string(run.run) + "\t" + std::to_string(run.seed) + "\t" +
+                     format_shortest(run.time_s) + "\t" + format_shortest(run.closest_approach_m);
+  for (const auto& r : run.robots) line += "\t" + escape(r.phase) + "\t" + format_shortest(r.dist_to_goal_m);
   return line + "\t" + escape(run.outcome);
 }
 
@@ -327,14 +321,14 @@ bool same_reals(const std::vector<double>& a, const std::vector<double>& b) {
   // Bitwise (through the text that reads back exactly): the same grid, not a nearby one.
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i) {
-    if (real(a[i]) != real(b[i])) return false;
+    if (format_shortest(a[i]) != format_shortest(b[i])) return false;
   }
   return true;
 }
 
 std::string reals_text(const std::vector<double>& v) {
   std::string s = "[";
-  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? " " : "") + real(v[i]);
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? " " : "") + format_shortest(v[i]);
   return s + "]";
 }
 
@@ -386,20 +380,20 @@ std::optional<std::string> campaign_difference(const CampaignHeader& a, const Ca
   }
   if (a.seed != b.seed) return "seed " + std::to_string(b.seed) + " vs " + std::to_string(a.seed);
   if (a.trials != b.trials) return "trials " + std::to_string(b.trials) + " vs " + std::to_string(a.trials);
-  if (real(a.timeout_s) != real(b.timeout_s)) return "timeout " + real(b.timeout_s) + " s vs " + real(a.timeout_s) + " s";
-  if (real(a.tmax_s) != real(b.tmax_s) || real(a.rmax_m) != real(b.rmax_m)) {
-    return "criterion point (tmax " + real(b.tmax_s) + " s, rmax " + real(b.rmax_m) + " m) vs (tmax " + real(a.tmax_s) +
-           " s, rmax " + real(a.rmax_m) + " m)";
+  if (format_shortest(a.timeout_s) != format_shortest(b.timeout_s)) return "timeout " + format_shortest(b.timeout_s) + " s vs " + format_shortest(a.timeout_s) + " s";
+  if (format_shortest(a.tmax_s) != format_shortest(b.tmax_s) || format_shortest(a.rmax_m) != format_shortest(b.rmax_m)) {
+    return "criterion point (tmax " + format_shortest(b.tmax_s) + " s, rmax " + format_shortest(b.rmax_m) + " m) vs (tmax " + format_shortest(a.tmax_s) +
+           " s, rmax " + format_shortest(a.rmax_m) + " m)";
   }
   if (a.has_grid != b.has_grid || !same_reals(a.tmax_axis, b.tmax_axis) || !same_reals(a.rmax_axis, b.rmax_axis)) {
     return "grid tmax " + reals_text(b.tmax_axis) + " rmax " + reals_text(b.rmax_axis) + " vs tmax " +
            reals_text(a.tmax_axis) + " rmax " + reals_text(a.rmax_axis);
   }
-  if (real(a.region_low) != real(b.region_low) || real(a.region_high) != real(b.region_high)) {
-    return "region bounds " + real(b.region_low) + ":" + real(b.region_high) + " vs " + real(a.region_low) + ":" +
-           real(a.region_high);
+  if (format_shortest(a.region_low) != format_shortest(b.region_low) || format_shortest(a.region_high) != format_shortest(b.region_high)) {
+    return "region bounds " + format_shortest(b.region_low) + ":" + format_shortest(b.region_high) + " vs " + format_shortest(a.region_low) + ":" +
+           format_shortest(a.region_high);
   }
-  if (a.mission_name != b.mission_name || a.robots != b.robots || real(a.threshold) != real(b.threshold)) {
+  if (a.mission_name != b.mission_name || a.robots != b.robots || format_shortest(a.threshold) != format_shortest(b.threshold)) {
     return "mission name, robots or threshold (same content hash: a damaged part)";
   }
   return std::nullopt;
@@ -491,14 +485,14 @@ void write_part(std::ostream& out, const CampaignPart& part) {
        << "trials\t" << h.trials << "\n"
        << "shard\t" << part.shard.index << "\t" << part.shard.count << "\n"
        << "runs\t" << part.range.first << "\t" << part.range.end << "\n"
-       << "timeout_s\t" << real(h.timeout_s) << "\n"
-       << "point\t" << real(h.tmax_s) << "\t" << real(h.rmax_m) << "\n"
+       << "timeout_s\t" << format_shortest(h.timeout_s) << "\n"
+       << "point\t" << format_shortest(h.tmax_s) << "\t" << format_shortest(h.rmax_m) << "\n"
        << "grid\t" << (h.has_grid ? 1 : 0) << "\n"
        << "tmax_axis\t" << reals_list(h.tmax_axis) << "\n"
        << "rmax_axis\t" << reals_list(h.rmax_axis) << "\n"
-       << "regions\t" << real(h.region_low) << "\t" << real(h.region_high) << "\n"
+       << "regions\t" << format_shortest(h.region_low) << "\t" << format_shortest(h.region_high) << "\n"
        << "mission\t" << escape(h.mission_name) << "\n"
-       << "threshold\t" << real(h.threshold) << "\n"
+       << "threshold\t" << format_shortest(h.threshold) << "\n"
        << "robots\t" << list(h.robots, [](const std::string& s) { return escape(s); }) << "\n"
        << "mission_file\t" << escape(h.mission_file) << "\n"
        << "world_file\t" << escape(h.world_file) << "\n"

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "p3at/common/log.hpp"
+#include "p3at/common/number_format.hpp"
 #include "p3at/executive/robot_executive.hpp"
 #include "p3at/team_link/team_key.hpp"
 #include "p3at/sim/radio.hpp"
@@ -61,12 +62,6 @@ double nearest_wall_m(const sim::WorldConfig& world, double x, double y) {
   return best;
 }
 
-std::string num(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
-
 /// Why a robot still running at the timeout has not finished, without
 /// --verbose: waiting for a message (which, from whom), or not moving (where,
 /// how close to a wall: pinned), or still on its way.
@@ -76,7 +71,7 @@ std::string why_not_finished(const mission::Mission& mission, std::size_t i, con
                              double y, double still_s, double wall_m, std::string& brief) {
   const mission::RobotSpec& spec = mission.robots[i];
   const auto state = spec.find_state(state_name);
-  std::string where = "in state '" + state_name + "' at (" + num(x, 2) + ", " + num(y, 2) + ")";
+  std::string where = "in state '" + state_name + "' at (" + format_fixed(x, 2) + ", " + format_fixed(y, 2) + ")";
   brief = spec.name + " in '" + state_name + "'";
   if (!state) return where;
   std::string waits;
@@ -99,7 +94,7 @@ std::string why_not_finished(const mission::Mission& mission, std::size_t i, con
   }
   if (moving && still_s >= 10.0) {
     brief += " not moving (pinned)";
-    return where + ", has not moved for " + num(still_s, 0) + " s, " + num(wall_m, 2) +
+    return where + ", has not moved for " + format_fixed(still_s, 0) + " s, " + format_fixed(wall_m, 2) +
            " m from the nearest wall (pinned" + (waits.empty() ? "" : "; or waiting for " + waits) + ")";
   }
   brief += " still moving";
