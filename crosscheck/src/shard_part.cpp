@@ -3,14 +3,8 @@
 #include "p3at/crosscheck/shard_part.hpp"
 
 #include <algorithm>
-#include <cerrno>
-#include <cmath>
-#include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <limits>
 #include <ostream>
-#include <sstream>
 #include <utility>
 
 #include "p3at/crosscheck/result_json.hpp"
@@ -126,59 +120,29 @@ void write_crosscheck_part(std::ostream& out, const CrosscheckPart& part) {
                        {"seed", h.seed}};
   std::string body = std::string(kMagic) + "\n" + header.dump() + "\n";
   for (const MissionResult& r : part.results) body += mission_result_json(r).dump() + "\n";
-  out << body << "end\t" << part.results.size() << "\tblake2b-256\t" << team_sim::part_checksum(body) << "\n";
+  out << body << team_sim::part_end_line(body, part.results.size());
 }
 
 Status write_crosscheck_part_file(const std::string& path, const CrosscheckPart& part) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) return make_error(Error::Code::io, tmp + ": cannot write: " + std::strerror(errno));
-    write_crosscheck_part(out, part);
-    out.flush();
-    if (!out) return make_error(Error::Code::io, tmp + ": write failed");
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const int err = errno;
-    std::remove(tmp.c_str());
-    return make_error(Error::Code::io, path + ": cannot rename " + tmp + " into place: " + std::strerror(err));
-  }
-  return {};
+  return team_sim::write_file_whole(path, [&part](std::ostream& out) { write_crosscheck_part(out, part); });
 }
 
 bool is_crosscheck_part(std::string_view text) { return text.substr(0, kMagic.size()) == kMagic; }
 
 Result<CrosscheckPart> parse_crosscheck_part(std::string_view text, const std::string& source) {
-  if (text.empty() || text.back() != '\n') {
-    return invalid(source + ": not a complete part (no final line: cut short while it was written or copied?)");
-  }
-  const std::size_t last = text.rfind('\n', text.size() - 2);
-  const std::size_t end_start = last == std::string_view::npos ? 0 : last + 1;
-  const std::string_view body = text.substr(0, end_start);
-  const std::string_view end_line = text.substr(end_start, text.size() - 1 - end_start);
-  const std::string prefix = "end\t";
-  const std::size_t tab = end_line.rfind('\t');
-  if (end_line.substr(0, prefix.size()) != prefix || tab == std::string_view::npos ||
-      end_line.find("\tblake2b-256\t") == std::string_view::npos) {
-    return invalid(source + ": not a complete part: the last line should be 'end <missions> blake2b-256 <checksum>'"
-                            " (cut short while it was written or copied?)");
-  }
-  if (end_line.substr(tab + 1) != team_sim::part_checksum(body)) {
-    return invalid(source + ": checksum mismatch: the part was changed or damaged after it was written; rerun its shard");
-  }
-  std::vector<std::string_view> lines;
-  for (std::size_t at = 0; at < body.size();) {
-    const std::size_t eol = body.find('\n', at);
-    lines.push_back(body.substr(at, eol - at));
-    at = eol + 1;
-  }
-  if (lines.size() < 2 || lines[0] != kMagic) {
+  // The checksum first (team_sim's part file): a part cut short or changed
+  // anywhere is refused as a whole.
+  const auto checked = team_sim::check_part(text, source, "missions");
+  if (!checked) return checked.error();
+  team_sim::PartLines lines(checked->body, source);
+  const std::size_t line_count = lines.count();
+  if (line_count < 2 || lines.next_line() != kMagic) {
     return invalid(source + ":1: expected '" + std::string(kMagic.substr(0, kMagic.find('\t'))) + " 1'");
   }
   CrosscheckPart part;
   std::size_t line = 2;
   try {
-    const Json header = Json::parse(lines[1]);
+    const Json header = Json::parse(lines.next_line());
     CrosscheckPartHeader& h = part.header;
     h.identity = header.at("identity").get<std::string>();
     h.command = header.at("command").get<std::string>();
@@ -205,13 +169,13 @@ Result<CrosscheckPart> parse_crosscheck_part(std::string_view text, const std::s
       return invalid(source + ":2: shard " + team_sim::to_string(h.shard) + " is missions " + range_text(expected) +
                      ", the part says " + range_text(h.missions));
     }
-    if (lines.size() - 2 != h.missions.size()) {
-      return invalid(source + ": " + std::to_string(lines.size() - 2) + " mission results for shard " +
+    if (line_count - 2 != h.missions.size()) {
+      return invalid(source + ": " + std::to_string(line_count - 2) + " mission results for shard " +
                      team_sim::to_string(h.shard) + "'s " + std::to_string(h.missions.size()) + " missions");
     }
     for (std::uint64_t i = h.missions.first; i < h.missions.end; ++i) {
       line = i - h.missions.first + 3;
-      MissionResult r = mission_result_from_json(Json::parse(lines[line - 1]));
+      MissionResult r = mission_result_from_json(Json::parse(lines.next_line()));
       if (r.name != h.names[i]) {
         return invalid(source + ":" + std::to_string(line) + ": expected mission " + h.names[i] + ", got " + r.name);
       }
@@ -224,15 +188,9 @@ Result<CrosscheckPart> parse_crosscheck_part(std::string_view text, const std::s
 }
 
 Result<CrosscheckPart> read_crosscheck_part_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    const int err = errno;
-    return make_error(err == ENOENT ? Error::Code::not_found : Error::Code::io,
-                      path + ": cannot open: " + std::strerror(err));
-  }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_crosscheck_part(ss.str(), path);
+  auto text = team_sim::read_whole_file(path);
+  if (!text) return text.error();
+  return parse_crosscheck_part(*text, path);
 }
 
 Result<MergedCrosscheck> merge_crosscheck_parts(std::vector<NamedCrosscheckPart> parts) {

@@ -1,7 +1,5 @@
 #include "p3at/team_sim/campaign_part.hpp"
 
-#include <sodium.h>
-
 #include <algorithm>
 #include <array>
 #include <cerrno>
@@ -16,6 +14,7 @@
 
 #include "p3at/common/number_format.hpp"
 #include "p3at/team_sim/empirical.hpp"
+#include "p3at/team_sim/part_file.hpp"
 #include "p3at/team_sim/run_seed.hpp"
 
 namespace p3at::team_sim {
@@ -92,49 +91,6 @@ std::string run_line(const RunResult& run) {
 
 // ---- reading: one line at a time, errors name the file and line ----
 
-class Lines {
- public:
-  Lines(std::string_view text, std::string source) : text_(text), source_(std::move(source)) {}
-
-  bool at_end() const { return pos_ >= text_.size(); }
-
-  // The next line's tab-separated fields.
-  std::vector<std::string_view> next() {
-    const std::size_t eol = text_.find('\n', pos_);
-    const std::string_view line = text_.substr(pos_, eol == std::string_view::npos ? std::string_view::npos : eol - pos_);
-    pos_ = eol == std::string_view::npos ? text_.size() : eol + 1;
-    ++line_;
-    std::vector<std::string_view> fields;
-    std::size_t start = 0;
-    for (;;) {
-      const std::size_t tab = line.find('\t', start);
-      fields.push_back(line.substr(start, tab == std::string_view::npos ? std::string_view::npos : tab - start));
-      if (tab == std::string_view::npos) break;
-      start = tab + 1;
-    }
-    return fields;
-  }
-
-  Error error(const std::string& what) const {
-    return invalid(source_ + ":" + std::to_string(line_) + ": " + what);
-  }
-
- private:
-  std::string_view text_;
-  std::string source_;
-  std::size_t pos_ = 0;
-  std::size_t line_ = 0;
-};
-
-std::string shown(std::string_view s) {
-  constexpr std::size_t kMax = 40;
-  std::string out = "'" + std::string(s.substr(0, kMax)) + (s.size() > kMax ? "...'" : "'");
-  for (char& c : out) {
-    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) == 0x7f) c = '?';
-  }
-  return out;
-}
-
 std::optional<std::uint64_t> parse_count(std::string_view s) {
   std::uint64_t v = 0;
   const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
@@ -149,33 +105,19 @@ std::optional<double> parse_real(std::string_view s) {
   return v;
 }
 
-// A header line: `key` and exactly `values` fields after it (or any number
-// when values < 0).
-Result<std::vector<std::string_view>> expect_line(Lines& lines, std::string_view key, int values) {
-  if (lines.at_end()) return lines.error("expected '" + std::string(key) + "', got the end of the file");
-  auto fields = lines.next();
-  if (fields[0] != key) return lines.error("expected '" + std::string(key) + "', got " + shown(fields[0]));
-  if (values >= 0 && fields.size() != static_cast<std::size_t>(values) + 1) {
-    return lines.error("'" + std::string(key) + "': expected " + std::to_string(values) + " value(s), got " +
-                       std::to_string(fields.size() - 1));
-  }
-  fields.erase(fields.begin());
-  return fields;
-}
-
-Result<std::uint64_t> count_field(const Lines& lines, std::string_view what, std::string_view s) {
+Result<std::uint64_t> count_field(const PartLines& lines, std::string_view what, std::string_view s) {
   auto v = parse_count(s);
   if (!v) return lines.error(std::string(what) + ": expected a whole number, got " + shown(s));
   return *v;
 }
 
-Result<double> real_field(const Lines& lines, std::string_view what, std::string_view s) {
+Result<double> real_field(const PartLines& lines, std::string_view what, std::string_view s) {
   auto v = parse_real(s);
   if (!v) return lines.error(std::string(what) + ": expected a number, got " + shown(s));
   return *v;
 }
 
-Result<std::string> text_field(const Lines& lines, std::string_view what, std::string_view s) {
+Result<std::string> text_field(const PartLines& lines, std::string_view what, std::string_view s) {
   auto v = unescape(s);
   if (!v) return lines.error(std::string(what) + ": bad escape in " + shown(s));
   return *v;
@@ -183,7 +125,7 @@ Result<std::string> text_field(const Lines& lines, std::string_view what, std::s
 
 // `key<TAB>n<TAB>v1 ... vn`
 template <class T, class F>
-Result<std::vector<T>> expect_list(Lines& lines, std::string_view key, F&& parse_one) {
+Result<std::vector<T>> expect_list(PartLines& lines, std::string_view key, F&& parse_one) {
   auto fields = expect_line(lines, key, -1);
   if (!fields) return fields.error();
   if (fields->empty()) return lines.error("'" + std::string(key) + "': expected a count of values");
@@ -209,7 +151,7 @@ Result<std::vector<T>> expect_list(Lines& lines, std::string_view key, F&& parse
     target = std::move(try_value_).value();     \
   } while (false)
 
-Result<CampaignHeader> parse_header(Lines& lines, Shard& shard, RunRange& range) {
+Result<CampaignHeader> parse_header(PartLines& lines, Shard& shard, RunRange& range) {
   CampaignHeader h;
   std::vector<std::string_view> f;
   P3AT_TRY_ASSIGN(f, expect_line(lines, "content_hash", 1));
@@ -262,7 +204,7 @@ Result<CampaignHeader> parse_header(Lines& lines, Shard& shard, RunRange& range)
   return h;
 }
 
-Result<PartCounts> parse_counts(Lines& lines, const CampaignHeader& h) {
+Result<PartCounts> parse_counts(PartLines& lines, const CampaignHeader& h) {
   PartCounts c;
   std::vector<std::string_view> f;
   P3AT_TRY_ASSIGN(f, expect_line(lines, "counts", 5));
@@ -282,7 +224,7 @@ Result<PartCounts> parse_counts(Lines& lines, const CampaignHeader& h) {
   return c;
 }
 
-Result<RunResult> parse_run(Lines& lines, const CampaignHeader& h, std::uint64_t expected_index) {
+Result<RunResult> parse_run(PartLines& lines, const CampaignHeader& h, std::uint64_t expected_index) {
   if (lines.at_end()) return lines.error("expected 'run' " + std::to_string(expected_index) + ", got the end of the file");
   const auto f = lines.next();
   const std::size_t want = 5 + 2 * h.robots.size() + 1;
@@ -339,17 +281,6 @@ std::string range_text(const RunRange& r) {
 }  // namespace
 
 // ---- shards ----
-
-std::string part_checksum(std::string_view body) {
-  std::array<unsigned char, crypto_generichash_BYTES> digest{};
-  if (sodium_init() < 0) return std::string(2 * digest.size(), '0');
-  crypto_generichash(digest.data(), digest.size(), reinterpret_cast<const unsigned char*>(body.data()), body.size(),
-                     nullptr, 0);
-  std::array<char, 2 * crypto_generichash_BYTES + 1> text{};
-  sodium_bin2hex(text.data(), text.size(), digest.data(), digest.size());
-  return std::string(text.data(), 2 * digest.size());
-}
-
 
 Result<Shard> parse_shard(std::string_view text) {
   const auto fail = [&] {
@@ -503,48 +434,20 @@ void write_part(std::ostream& out, const CampaignPart& part) {
        << "grid_joint\t" << counts_list(c.grid_joint) << "\n";
   for (const auto& run : part.runs) body << run_line(run) << "\n";
   const std::string text = body.str();
-  out << text << "end\t" << part.runs.size() << "\tblake2b-256\t" << part_checksum(text) << "\n";
+  out << text << part_end_line(text, part.runs.size());
 }
 
 Status write_part_file(const std::string& path, const CampaignPart& part) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) return make_error(Error::Code::io, tmp + ": cannot write: " + std::strerror(errno));
-    write_part(out, part);
-    out.flush();
-    if (!out) return make_error(Error::Code::io, tmp + ": write failed");
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const int err = errno;
-    std::remove(tmp.c_str());
-    return make_error(Error::Code::io, path + ": cannot rename " + tmp + " into place: " + std::strerror(err));
-  }
-  return {};
+  return write_file_whole(path, [&part](std::ostream& out) { write_part(out, part); });
 }
 
 Result<CampaignPart> parse_part(std::string_view text, const std::string& source) {
   // The checksum first: a part cut short or changed anywhere is refused as a
   // whole, before any of its numbers is believed.
-  if (text.empty() || text.back() != '\n') {
-    return invalid(source + ": not a complete part (no final line: cut short while it was written or copied?)");
-  }
-  const std::size_t last = text.rfind('\n', text.size() - 2);
-  const std::size_t end_start = last == std::string_view::npos ? 0 : last + 1;
-  const std::string_view body = text.substr(0, end_start);
-  const std::string_view end_line = text.substr(end_start, text.size() - 1 - end_start);
-  const std::size_t line_count = static_cast<std::size_t>(std::count(body.begin(), body.end(), '\n')) + 1;
-  Lines end_lines(end_line, source + ":" + std::to_string(line_count) + " (last line)");
-  const auto ef = end_lines.next();
-  if (ef.size() != 4 || ef[0] != "end" || ef[2] != "blake2b-256") {
-    return invalid(source + ": not a complete part: the last line should be 'end <runs> blake2b-256 <checksum>', got " +
-                   shown(end_line) + " (cut short while it was written or copied?)");
-  }
-  if (ef[3] != part_checksum(body)) {
-    return invalid(source + ": checksum mismatch: the part was changed or damaged after it was written; rerun its shard");
-  }
+  const auto checked = check_part(text, source, "runs");
+  if (!checked) return checked.error();
 
-  Lines lines(body, source);
+  PartLines lines(checked->body, source);
   auto magic = lines.next();
   if (magic.size() != 2 || magic[0] != kMagic) {
     return lines.error("expected '" + std::string(kMagic) + "\t" + std::to_string(kVersion) + "', got " +
@@ -567,8 +470,8 @@ Result<CampaignPart> parse_part(std::string_view text, const std::string& source
     part.runs.push_back(std::move(run).value());
   }
   if (!lines.at_end()) return lines.error("expected the 'end' line after run " + std::to_string(part.range.end - 1));
-  if (auto n = parse_count(ef[1]); !n || *n != part.runs.size()) {
-    return invalid(source + ": the end line counts " + std::string(ef[1]) + " runs, the part has " +
+  if (auto n = parse_count(checked->end_count); !n || *n != part.runs.size()) {
+    return invalid(source + ": the end line counts " + std::string(checked->end_count) + " runs, the part has " +
                    std::to_string(part.runs.size()));
   }
   // The stored counts must be what the runs give: two records of one fact.
@@ -579,16 +482,9 @@ Result<CampaignPart> parse_part(std::string_view text, const std::string& source
 }
 
 Result<CampaignPart> read_part_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    const int err = errno;
-    return make_error(err == ENOENT ? Error::Code::not_found : Error::Code::io,
-                      path + ": cannot open: " + std::strerror(err));
-  }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) return make_error(Error::Code::io, path + ": read error");
-  return parse_part(ss.str(), path);
+  auto text = read_whole_file(path);
+  if (!text) return text.error();
+  return parse_part(*text, path);
 }
 
 // ---- merging ----

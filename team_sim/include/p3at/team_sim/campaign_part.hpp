@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "p3at/common/result.hpp"
+#include "p3at/team_sim/part_file.hpp"
 #include "p3at/team_sim/run_result.hpp"
 
 namespace p3at::team_sim {
@@ -110,9 +111,6 @@ void write_part(std::ostream& out, const CampaignPart& part);
 /// Writes `path` whole or not at all (a temporary file renamed into place),
 /// so a shard killed while writing leaves no part that looks finished.
 Status write_part_file(const std::string& path, const CampaignPart& part);
-
-/// The checksum the end line carries: BLAKE2b-256, hex, of every byte before it.
-std::string part_checksum(std::string_view body);
 
 /// Parses a part; `source` names it in errors ("file:line: expected ...").
 Result<CampaignPart> parse_part(std::string_view text, const std::string& source);
