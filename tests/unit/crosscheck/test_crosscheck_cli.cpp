@@ -17,32 +17,16 @@
 #include <sstream>
 #include <string>
 
+#include "cli_run.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
+using p3at::test::read_file;
+using Outcome = p3at::test::CommandOutcome;
 
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-struct Outcome {
-  int status = -1;
-  std::string out, err;
-};
-
-Outcome run(const std::string& command, const fs::path& dir) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string full = "cd '" + dir.string() + "' && " + command + " >'" + out.string() + "' 2>'" + err.string() + "'";
-  const int raw = std::system(full.c_str());
-  Outcome o;
-  o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  o.out = read_file(out);
-  o.err = read_file(err);
-  return o;
-}
+// `command` run in `dir` (its stdout and stderr captured).
+Outcome run(const std::string& command, const fs::path& dir) { return p3at::test::run_command(command, dir.string()); }
 
 const std::string kVipars = "'" + std::string(P3AT_VIPARS_BIN) + "'";
 // Seed 5 with one robot: a 30 s mission in an open room.

@@ -17,10 +17,14 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.hpp"
+
 namespace {
 
 using Json = nlohmann::json;
 namespace fs = std::filesystem;
+using p3at::test::read_file;
+using Outcome = p3at::test::CommandOutcome;
 
 const std::string kExample = std::string(P3AT_SOURCE_DIR) + "/examples/bounding_overwatch/";
 const std::string kMission = kExample + "mission.yaml";
@@ -37,31 +41,11 @@ std::string scratch_dir(const std::string& stem) {
   return dir;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-struct Outcome {
-  int status = -1;
-  std::string out, err;
-};
-
-// Runs a shell command line (vipars's path substituted for a leading "vipars").
+// Runs a shell command line in `dir` (vipars's path substituted for a leading "vipars").
 Outcome sh(const std::string& dir, const std::string& command) {
-  const std::string out = dir + "/stdout.txt", err = dir + "/stderr.txt";
   std::string line = command;
   if (line.rfind("vipars ", 0) == 0) line = "'" + std::string(P3AT_VIPARS_BIN) + "'" + line.substr(6);
-  // A command's own "> file" goes inside the group; what is left goes to out and err.
-  const std::string full = "cd '" + dir + "' && { " + line + " ; } >'" + out + "' 2>'" + err + "'";
-  const int raw = std::system(full.c_str());
-  Outcome o;
-  o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  o.out = read_file(out);
-  o.err = read_file(err);
-  return o;
+  return p3at::test::run_command(line, dir);
 }
 
 std::vector<std::vector<double>> rows(const std::string& path) {

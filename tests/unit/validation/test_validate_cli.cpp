@@ -17,9 +17,13 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.hpp"
+
 namespace {
 
 using Json = nlohmann::ordered_json;
+using p3at::test::read_file;
+using Outcome = p3at::test::CommandOutcome;
 
 const std::string kMission = std::string(P3AT_SOURCE_DIR) + "/examples/relay/mission.yaml";
 const std::string kWorld = std::string(P3AT_SOURCE_DIR) + "/examples/relay/world.yaml";
@@ -29,33 +33,9 @@ std::string scratch(const std::string& stem) {
   return "/tmp/p3at-validate-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" + stem;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-struct Outcome {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
 // Runs vipars with `args` (already shell-quoted where needed); stdout and
 // stderr captured separately (stderr carries timing, stdout must not).
-Outcome vipars(const std::string& args) {
-  const std::string out = scratch("stdout"), err = scratch("stderr");
-  const std::string command = "'" + std::string(P3AT_VIPARS_BIN) + "' " + args + " >'" + out + "' 2>'" + err + "'";
-  const int raw = std::system(command.c_str());
-  Outcome o;
-  o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  o.out = read_file(out);
-  o.err = read_file(err);
-  std::remove(out.c_str());
-  std::remove(err.c_str());
-  return o;
-}
+Outcome vipars(const std::string& args) { return p3at::test::run_command("'" + std::string(P3AT_VIPARS_BIN) + "' " + args); }
 
 std::string validate_args(const std::string& extra) {
   return "validate '" + kMission + "' --world '" + kWorld + "' " + extra;

@@ -17,16 +17,14 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.hpp"
 #include "p3at/verifier/approximation_table.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-  int status = -1;
-  std::string out;
-};
+using Run = p3at::test::CommandOutcome;
 
 std::string vipars() {
 #ifdef P3AT_VIPARS_BIN
@@ -40,18 +38,8 @@ std::string honest(const std::string& mission, const std::string& file) {
   return std::string(P3AT_SOURCE_DIR) + "/tests/data/honest/" + mission + "/" + file;
 }
 
-Run run(const std::string& args) {
-  Run r;
-  const std::string command = vipars() + " " + args + " 2>/dev/null";
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+// vipars with `args`; its stdout (stderr is captured apart and not looked at).
+Run run(const std::string& args) { return p3at::test::run_command(vipars() + " " + args); }
 
 nlohmann::json verify_json(const std::string& mission, const std::string& extra = "") {
   const Run r = run("verify " + honest(mission, "mission.yaml") + " --models " + honest(mission, "models.yaml") +

@@ -21,6 +21,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli_run.hpp"
 #include "p3at/verifier/calibration.hpp"
 #include "p3at/verifier/models.hpp"
 
@@ -32,6 +33,8 @@ doctest::Approx near(double expected, double relative) {
 }
 
 namespace fs = std::filesystem;
+using p3at::test::read_file;
+using Outcome = p3at::test::CommandOutcome;
 constexpr double kDeg = std::numbers::pi / 180.0;
 // The P3-AT firmware's track: 2 / DiffConvFactor 0.0034, in metres.
 constexpr double kTrackM = 2.0 / 0.0034 / 1000.0;
@@ -44,30 +47,9 @@ std::string vipars_binary() {
 #endif
 }
 
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-struct Outcome {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
+// vipars with `args`, run in `dir`.
 Outcome vipars(const fs::path& dir, const std::string& args) {
-  const fs::path out = dir / "stdout.txt";
-  const fs::path err = dir / "stderr.txt";
-  const std::string command = "cd '" + dir.string() + "' && '" + vipars_binary() + "' " + args + " >'" + out.string() +
-                              "' 2>'" + err.string() + "'";
-  const int raw = std::system(command.c_str());
-  Outcome o;
-  o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  o.out = read_file(out);
-  o.err = read_file(err);
-  return o;
+  return p3at::test::run_command("'" + vipars_binary() + "' " + args, dir.string());
 }
 
 // Two robots with known systematic errors, and walls around them that a

@@ -10,14 +10,13 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli_run.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-  int status = -1;
-  std::string out;
-};
+using Run = p3at::test::CommandOutcome;
 
 std::string vipars() {
 #ifdef P3AT_VIPARS_BIN
@@ -31,18 +30,8 @@ std::string example(const std::string& name) {
   return std::string(P3AT_SOURCE_DIR) + "/examples/bounding_overwatch/" + name;
 }
 
-Run run(const std::string& args) {
-  Run r;
-  const std::string command = vipars() + " " + args + " 2>/dev/null";
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+// vipars with `args`; its stdout (stderr is captured apart and not looked at).
+Run run(const std::string& args) { return p3at::test::run_command(vipars() + " " + args); }
 
 }  // namespace
 
