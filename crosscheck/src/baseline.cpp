@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "p3at/common/number_format.hpp"
+
 namespace p3at::crosscheck {
 
 std::vector<BaselineEntry> baseline_from(const std::vector<MissionResult>& results, const Bounds& b, double margin) {
@@ -89,7 +91,6 @@ std::vector<BaselineEntry> load_baseline(const std::string& path) {
 
 std::vector<std::string> check_baseline(const std::vector<MissionResult>& results, const std::vector<BaselineEntry>& baseline) {
   std::vector<std::string> out;
-  char buf[200];
   for (const MissionResult& r : results) {
     const auto it = std::find_if(baseline.begin(), baseline.end(), [&r](const BaselineEntry& e) { return e.name == r.name; });
     if (it == baseline.end()) {
@@ -102,8 +103,7 @@ std::vector<std::string> check_baseline(const std::vector<MissionResult>& result
     }
     const auto over = [&](const char* what, double measured, double limit) {
       if (measured > limit) {
-        std::snprintf(buf, sizeof buf, "%s: %s %.3f > %.3f", r.name.c_str(), what, measured, limit);
-        out.push_back(buf);
+        out.push_back(r.name + ": " + what + " " + format_fixed(measured, 3) + " > " + format_fixed(limit, 3));
       }
     };
     over("time strict", r.score.time.strict, it->time);
@@ -113,9 +113,8 @@ std::vector<std::string> check_baseline(const std::vector<MissionResult>& result
     over("radius 1 % shift", r.score.radius.tolerant, it->radius_tolerant);
     over("joint 1 % shift", r.score.joint.tolerant, it->joint_tolerant);
     if (r.evaluable && r.score.overconfident_go_cells > it->overconfident_go_cells) {
-      std::snprintf(buf, sizeof buf, "%s: %zu over-confident GO cells > %zu", r.name.c_str(), r.score.overconfident_go_cells,
-                    it->overconfident_go_cells);
-      out.push_back(buf);
+      out.push_back(r.name + ": " + std::to_string(r.score.overconfident_go_cells) + " over-confident GO cells > " +
+                    std::to_string(it->overconfident_go_cells));
     }
   }
   return out;

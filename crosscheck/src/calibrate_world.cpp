@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "p3at/calibration_rig/calibrate_drive.hpp"
+#include "p3at/common/number_format.hpp"
 #include "p3at/calibration_rig/calibrate_messages.hpp"
 #include "p3at/sim/sim_drive_base.hpp"
 #include "p3at/sim/world.hpp"
@@ -38,9 +39,8 @@ CalibratedModels calibrate_from_world(const mission::Mission& mission, const sim
         break;
       }
     }
-    char buf[160];
-    std::snprintf(buf, sizeof buf, " %s %.3g m/s and %.3g deg/s;", spec.name.c_str(), plan.speed_mps, plan.spin_rate_degps);
-    note += buf;
+    note += " " + spec.name + " " + format_general(plan.speed_mps, 3) + " m/s and " + format_general(plan.spin_rate_degps, 3) +
+            " deg/s;";
     sim::WorldConfig open;
     open.radio = world.radio;
     open.robots.push_back(*it);
