@@ -40,10 +40,6 @@ ErrorSummary error_from_json(const Json& j) {
   return e;
 }
 
-std::string range_text(const team_sim::RunRange& r) {
-  return r.size() == 0 ? "none" : std::to_string(r.first) + ".." + std::to_string(r.end - 1);
-}
-
 }  // namespace
 
 std::string campaign_identity(const std::vector<MissionInput>& inputs, const CampaignOptions& o) {
@@ -166,8 +162,8 @@ Result<CrosscheckPart> parse_crosscheck_part(std::string_view text, const std::s
     }
     const team_sim::RunRange expected = team_sim::shard_runs(h.names.size(), h.shard);
     if (expected.first != h.missions.first || expected.end != h.missions.end) {
-      return invalid(source + ":2: shard " + team_sim::to_string(h.shard) + " is missions " + range_text(expected) +
-                     ", the part says " + range_text(h.missions));
+      return invalid(source + ":2: shard " + team_sim::to_string(h.shard) + " is missions " + team_sim::range_text(expected) +
+                     ", the part says " + team_sim::range_text(h.missions));
     }
     if (line_count - 2 != h.missions.size()) {
       return invalid(source + ": " + std::to_string(line_count - 2) + " mission results for shard " +
@@ -213,34 +209,10 @@ Result<MergedCrosscheck> merge_crosscheck_parts(std::vector<NamedCrosscheckPart>
                      std::to_string(a.shard.count));
     }
   }
-  for (std::size_t i = 1; i < parts.size(); ++i) {
-    if (parts[i].part.header.shard.index == parts[i - 1].part.header.shard.index) {
-      return invalid(parts[i].file + " and " + parts[i - 1].file + " are both shard " +
-                     team_sim::to_string(parts[i].part.header.shard) + " (missions " +
-                     range_text(parts[i].part.header.missions) + " twice): give each shard once");
-    }
-  }
-  const std::uint64_t n = first.part.header.shard.count;
-  std::vector<team_sim::Shard> missing;
-  std::size_t next = 0;
-  for (std::uint64_t s = 0; s < n; ++s) {
-    if (next < parts.size() && parts[next].part.header.shard.index == s) {
-      ++next;
-    } else {
-      missing.push_back({s, n});
-    }
-  }
-  if (!missing.empty()) {
-    std::string message = "missing " + std::to_string(missing.size()) + " of " + std::to_string(n) + " shards: ";
-    for (std::size_t i = 0; i < missing.size() && i < 20; ++i) {
-      message += (i ? ", " : "") + std::string("shard ") + team_sim::to_string(missing[i]) + " (missions " +
-                 range_text(team_sim::shard_runs(first.part.header.names.size(), missing[i])) + ")";
-    }
-    if (missing.size() > 20) message += ", ...";
-    message += missing.size() == 1 ? "; rerun it with --shard " + team_sim::to_string(missing.front())
-                                   : "; rerun each with its --shard I/" + std::to_string(n);
-    message += " (the command line otherwise the same)";
-    return invalid(message);
+  std::vector<team_sim::FileShard> shards;
+  for (const NamedCrosscheckPart& p : parts) shards.push_back({p.file, p.part.header.shard});
+  if (auto problem = team_sim::shard_set_problem(shards, first.part.header.names.size(), "missions")) {
+    return invalid(*problem);
   }
   MergedCrosscheck merged;
   merged.header = first.part.header;

@@ -274,10 +274,6 @@ std::string reals_text(const std::vector<double>& v) {
   return s + "]";
 }
 
-std::string range_text(const RunRange& r) {
-  return r.size() == 0 ? "none" : std::to_string(r.first) + ".." + std::to_string(r.end - 1);
-}
-
 }  // namespace
 
 // ---- shards ----
@@ -300,6 +296,43 @@ std::string to_string(const Shard& shard) { return std::to_string(shard.index) +
 RunRange shard_runs(std::uint64_t trials, const Shard& shard) {
   // trials <= 1e6 and count <= 1e5: the products fit in 64 bits.
   return RunRange{shard.index * trials / shard.count, (shard.index + 1) * trials / shard.count};
+}
+
+std::string range_text(const RunRange& r) {
+  return r.size() == 0 ? "none" : std::to_string(r.first) + ".." + std::to_string(r.end - 1);
+}
+
+std::optional<std::string> shard_set_problem(const std::vector<FileShard>& sorted, std::uint64_t items,
+                                             std::string_view counted) {
+  const std::string what(counted);
+  for (std::size_t i = 1; i < sorted.size(); ++i) {
+    if (sorted[i].shard.index == sorted[i - 1].shard.index) {
+      return sorted[i].file + " and " + sorted[i - 1].file + " are both shard " + to_string(sorted[i].shard) + " (" +
+             what + " " + range_text(shard_runs(items, sorted[i].shard)) + " twice): give each shard once";
+    }
+  }
+  if (sorted.empty()) return std::nullopt;
+  const std::uint64_t n = sorted.front().shard.count;
+  std::vector<Shard> missing;
+  std::size_t next = 0;
+  for (std::uint64_t s = 0; s < n; ++s) {
+    if (next < sorted.size() && sorted[next].shard.index == s) {
+      ++next;
+    } else {
+      missing.push_back({s, n});
+    }
+  }
+  if (missing.empty()) return std::nullopt;
+  std::string message = "missing " + std::to_string(missing.size()) + " of " + std::to_string(n) + " shards: ";
+  for (std::size_t i = 0; i < missing.size() && i < 20; ++i) {
+    message += (i ? ", " : "") + std::string("shard ") + to_string(missing[i]) + " (" + what + " " +
+               range_text(shard_runs(items, missing[i])) + ")";
+  }
+  if (missing.size() > 20) message += ", ...";
+  message += missing.size() == 1 ? "; rerun it with --shard " + to_string(missing.front())
+                                 : "; rerun each with its --shard I/" + std::to_string(n);
+  message += " (the command line otherwise the same)";
+  return message;
 }
 
 // ---- the campaign ----
@@ -505,38 +538,11 @@ Result<MergedCampaign> merge_parts(std::vector<NamedPart> parts) {
                      std::to_string(first.part.shard.count));
     }
   }
-  for (std::size_t i = 1; i < parts.size(); ++i) {
-    if (parts[i].part.shard.index == parts[i - 1].part.shard.index) {
-      return invalid(parts[i].file + " and " + parts[i - 1].file + " are both shard " + to_string(parts[i].part.shard) +
-                     " (runs " + range_text(parts[i].part.range) + " twice): give each shard once");
-    }
-  }
   const std::uint64_t n = first.part.shard.count;
   const std::uint64_t trials = first.part.header.trials;
-  std::vector<std::string> missing;
-  std::vector<Shard> missing_shards;
-  std::size_t next = 0;
-  for (std::uint64_t s = 0; s < n; ++s) {
-    if (next < parts.size() && parts[next].part.shard.index == s) {
-      ++next;
-      continue;
-    }
-    const Shard shard{s, n};
-    missing.push_back("shard " + to_string(shard) + " (runs " + range_text(shard_runs(trials, shard)) + ")");
-    missing_shards.push_back(shard);
-  }
-  if (!missing.empty()) {
-    std::string message = "missing " + std::to_string(missing.size()) + " of " + std::to_string(n) + " shards: ";
-    for (std::size_t i = 0; i < missing.size() && i < 20; ++i) message += (i ? ", " : "") + missing[i];
-    if (missing.size() > 20) message += ", ...";
-    if (missing_shards.size() == 1) {
-      message += "; rerun it with --shard " + to_string(missing_shards.front());
-    } else {
-      message += "; rerun each with its --shard I/" + std::to_string(n);
-    }
-    message += " (the command line otherwise the same)";
-    return invalid(message);
-  }
+  std::vector<FileShard> shards;
+  for (const NamedPart& p : parts) shards.push_back({p.file, p.part.shard});
+  if (auto problem = shard_set_problem(shards, trials, "runs")) return invalid(*problem);
 
   MergedCampaign merged;
   merged.header = first.part.header;

@@ -52,6 +52,22 @@ struct RunRange {
 };
 /// The runs of a `trials`-run campaign that shard `shard` makes.
 RunRange shard_runs(std::uint64_t trials, const Shard& shard);
+/// "first..last" (inclusive), or "none".
+std::string range_text(const RunRange& range);
+
+/// A part's file and its shard, for shard_set_problem.
+struct FileShard {
+  std::string file;
+  Shard shard;
+};
+/// What is wrong with a set of parts' shards, sorted by index and all of one
+/// count N, of a campaign of `items` runs or missions (`counted` names them):
+/// "A and B are both shard I/N (<counted> ... twice): give each shard once" or
+/// "missing K of N shards: shard I/N (<counted> ...), ...; rerun it with
+/// --shard I/N (...)"; nothing when each shard is there once. Shared by
+/// validation and cross-check merges.
+std::optional<std::string> shard_set_problem(const std::vector<FileShard>& sorted, std::uint64_t items,
+                                             std::string_view counted);
 
 /// What every part of one campaign shares. Two parts are of the same
 /// campaign when everything here but the descriptive fields is equal.
