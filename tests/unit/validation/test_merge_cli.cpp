@@ -179,10 +179,10 @@ nlohmann::json without_seconds(const std::string& text) {
 
 TEST_CASE("a cross-check campaign sharded by mission merges into the unsharded campaign's results") {
   const std::string out = scratch("crosscheck-out");
-  // Three one-robot missions whose verify is quick (seeds 4..6, under a second
-  // in all in release), few runs and a small grid: the merge is what is
-  // tested, and the test runs under ASan at -O0 in CI too.
-  const std::string flags = "crosscheck --seeds 4:6 --robots 1:1 --runs 8 --calibration-runs 2 --tmax-points 5 "
+  // Two one-robot missions whose verify is quick (seeds 7 and 8: 0.3 s of
+  // CPU for the campaign in release), few runs and a small grid: the merge is
+  // what is tested, and the test runs under ASan at -O0 in CI too.
+  const std::string flags = "crosscheck --seeds 7:8 --robots 1:1 --runs 8 --calibration-runs 2 --tmax-points 5 "
                             "--rmax-points 5 --no-report --out '" + out + "'";
   const Outcome whole_text = vipars(flags);
   REQUIRE_MESSAGE(whole_text.status == 0, whole_text.err);
@@ -200,7 +200,7 @@ TEST_CASE("a cross-check campaign sharded by mission merges into the unsharded c
   const Outcome merged_text = vipars("merge" + quoted(parts, {1, 0}));
   CHECK(merged_text.status == 0);
   CHECK(merged_text.out == whole_text.out);
-  CHECK(merged_text.err.find("vipars merge: merged 3 of 3 missions expected from 2 parts") != std::string::npos);
+  CHECK(merged_text.err.find("vipars merge: merged 2 of 2 missions expected from 2 parts") != std::string::npos);
   CHECK(read_file(out + "/summary.txt") == whole_summary);
   const Outcome merged_json = vipars("merge" + quoted(parts, {0, 1}) + " --json");
   CHECK(merged_json.status == 0);
