@@ -148,4 +148,10 @@ Result<SystemOutcome> evaluate_system(const mission::Mission& mission, const Mod
 Result<VerifyResult> verify(const mission::Mission& mission, const Models& models, const VerifyOptions& options,
                             const std::vector<std::string>& criteria_files = {}, const TeamSnapshot* from = nullptr);
 
+/// verify() on an outcome evaluate_system() already gave for this mission and
+/// these models: the same result, for callers that read one evaluation on
+/// several grids (the cross-check's coarse and fine grids).
+Result<VerifyResult> verify_outcome(const mission::Mission& mission, const Models& models, const SystemOutcome& outcome,
+                                    const VerifyOptions& options, const std::vector<std::string>& criteria_files = {});
+
 }  // namespace p3at::verifier
