@@ -235,7 +235,10 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
     const double r_far = std::max(4.0 * mission.criteria.rmax_m, 3.0);
     for (int k = 1; k <= 240; ++k) coarse.tmax_grid.push_back(t_far * k / 240.0);
     for (int k = 1; k <= 240; ++k) coarse.rmax_grid.push_back(r_far * k / 240.0);
-    Result<verifier::VerifyResult> first = verifier::verify(mission, models, coarse);
+    // One evaluation of the mission, read on both grids (the sequence is the expensive part).
+    Result<verifier::SystemOutcome> outcome = verifier::evaluate_system(mission, models);
+    if (!outcome) throw std::runtime_error("verify: " + outcome.error().message);
+    Result<verifier::VerifyResult> first = verifier::verify_outcome(mission, models, *outcome, coarse);
     if (!first) throw std::runtime_error("verify: " + first.error().message);
     const Rise vt = rise_of_curve(first->grid->tmax, first->grid->p_time);
     const Rise vr = rise_of_curve(first->grid->rmax, first->grid->p_radius);
@@ -302,7 +305,7 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
     verifier::VerifyOptions vo;
     vo.tmax_grid = tax.values;
     vo.rmax_grid = rax.values;
-    Result<verifier::VerifyResult> verified = verifier::verify(mission, models, vo);
+    Result<verifier::VerifyResult> verified = verifier::verify_outcome(mission, models, *outcome, vo);
     if (!verified) throw std::runtime_error("verify: " + verified.error().message);
     // Located as `vipars verify mission.yaml` (the folder's own command) locates them.
     verifier::locate_in_mission_file(*verified, input.mission_yaml, "mission.yaml");

@@ -172,6 +172,22 @@ std::string fixed(double v, int decimals) {
   return buf;
 }
 
+// The criterion point (the mission's, overridden by the options), checked.
+Result<VerifyResult> criteria_point(const mission::Mission& mission, const VerifyOptions& options) {
+  VerifyResult r;
+  r.tmax_s = options.tmax_s.value_or(mission.criteria.tmax_s);
+  r.rmax_m = options.rmax_m.value_or(mission.criteria.rmax_m);
+  r.threshold = options.threshold.value_or(mission.criteria.threshold);
+  if (!(r.tmax_s > 0.0) || !(r.rmax_m > 0.0)) {
+    return make_error(Error::Code::invalid_argument, "Tmax and Rmax must be positive (got tmax " + fixed(r.tmax_s, 3) +
+                                                         " s, rmax " + fixed(r.rmax_m, 3) + " m)");
+  }
+  if (!(r.threshold >= 0.0 && r.threshold <= 1.0)) {
+    return make_error(Error::Code::invalid_argument, "threshold must be in [0, 1], got " + fixed(r.threshold, 4));
+  }
+  return r;
+}
+
 }  // namespace
 
 const char* to_string(Decision d) {
@@ -208,20 +224,18 @@ Result<SystemOutcome> evaluate_system(const mission::Mission& mission, const Mod
 
 Result<VerifyResult> verify(const mission::Mission& mission, const Models& models, const VerifyOptions& options,
                             const std::vector<std::string>& criteria_files, const TeamSnapshot* from) {
-  VerifyResult r;
-  r.tmax_s = options.tmax_s.value_or(mission.criteria.tmax_s);
-  r.rmax_m = options.rmax_m.value_or(mission.criteria.rmax_m);
-  r.threshold = options.threshold.value_or(mission.criteria.threshold);
-  if (!(r.tmax_s > 0.0) || !(r.rmax_m > 0.0)) {
-    return make_error(Error::Code::invalid_argument, "Tmax and Rmax must be positive (got tmax " + fixed(r.tmax_s, 3) +
-                                                         " s, rmax " + fixed(r.rmax_m, 3) + " m)");
-  }
-  if (!(r.threshold >= 0.0 && r.threshold <= 1.0)) {
-    return make_error(Error::Code::invalid_argument, "threshold must be in [0, 1], got " + fixed(r.threshold, 4));
-  }
+  // Bad criteria are refused before the expensive evaluation.
+  if (Result<VerifyResult> checked = criteria_point(mission, options); !checked) return checked.error();
   Result<SystemOutcome> evaluated = evaluate_system(mission, models, from);
   if (!evaluated) return evaluated.error();
-  const SystemOutcome& o = *evaluated;
+  return verify_outcome(mission, models, *evaluated, options, criteria_files);
+}
+
+Result<VerifyResult> verify_outcome(const mission::Mission& mission, const Models& models, const SystemOutcome& o,
+                                    const VerifyOptions& options, const std::vector<std::string>& criteria_files) {
+  Result<VerifyResult> checked = criteria_point(mission, options);
+  if (!checked) return checked.error();
+  VerifyResult r = std::move(*checked);
 
   const double cycle_s = shared_cycle_s(models);
   const Point p = probabilities(o, mission, r.tmax_s, r.rmax_m, cycle_s);
@@ -231,6 +245,8 @@ Result<VerifyResult> verify(const mission::Mission& mission, const Models& model
   r.pruned_mass = o.pruned_mass;
   r.blocked_mass = o.blocked_mass;
   r.loop_cutoff_mass = o.loop_cutoff_mass;
+  r.work_cutoff_mass = o.work_cutoff_mass;
+  r.work_cycles = o.work_cycles;
   r.branches = o.branches.size();
   r.subsystems = o.subsystems;
 

@@ -205,7 +205,8 @@ Environment read_environment(const MapReader& root, const std::string& base_dir)
 Budget read_budget(const MapReader& root) {
   Budget b;
   if (!root.has("budget")) return b;
-  const MapReader m = root.map_at("budget", {"max_components", "max_branches", "noise_sigma_points", "max_events"});
+  const MapReader m =
+      root.map_at("budget", {"max_components", "max_branches", "noise_sigma_points", "max_events", "max_work_cycles"});
   const auto count = [&m](std::string_view key, std::int64_t hi, std::size_t fallback) {
     return m.has(key) ? static_cast<std::size_t>(m.integer(key, 1, hi)) : fallback;
   };
@@ -213,6 +214,7 @@ Budget read_budget(const MapReader& root) {
   b.max_branches = count("max_branches", 1000000, b.max_branches);
   b.noise_sigma_points = count("noise_sigma_points", 1000, b.noise_sigma_points);
   b.max_events = count("max_events", 1000000000, b.max_events);
+  b.max_work_cycles = count("max_work_cycles", 1'000'000'000'000, b.max_work_cycles);
   return b;
 }
 

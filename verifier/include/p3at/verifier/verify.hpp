@@ -86,6 +86,8 @@ struct VerifyResult {
   double pruned_mass = 0.0;
   double blocked_mass = 0.0;
   double loop_cutoff_mass = 0.0;  ///< SystemOutcome::loop_cutoff_mass
+  double work_cutoff_mass = 0.0;  ///< SystemOutcome::work_cutoff_mass (counted as failure)
+  std::size_t work_cycles = 0;    ///< SystemOutcome::work_cycles
   std::size_t branches = 0;
   std::size_t subsystems = 0;
   std::vector<BlockedRobot> blocked;          ///< who blocked_mass belongs to
@@ -145,5 +147,11 @@ Result<SystemOutcome> evaluate_system(const mission::Mission& mission, const Mod
 /// docs/verifier.md; parse errors come back with file:line:column).
 Result<VerifyResult> verify(const mission::Mission& mission, const Models& models, const VerifyOptions& options,
                             const std::vector<std::string>& criteria_files = {}, const TeamSnapshot* from = nullptr);
+
+/// verify() on an outcome evaluate_system() already gave for this mission and
+/// these models: the same result, for callers that read one evaluation on
+/// several grids (the cross-check's coarse and fine grids).
+Result<VerifyResult> verify_outcome(const mission::Mission& mission, const Models& models, const SystemOutcome& outcome,
+                                    const VerifyOptions& options, const std::vector<std::string>& criteria_files = {});
 
 }  // namespace p3at::verifier
