@@ -105,6 +105,29 @@ TEST_CASE("relay: random motion error spreads the true position, growing with di
   CHECK(b.robots[1].final_position.cov.norm() == doctest::Approx(0.0));
 }
 
+TEST_CASE("relay: the odometry's relative jitter spreads a noiseless leg's firing over whole cycles") {
+  // The simulator multiplies each odometric update by (1 + N(0, sd^2))
+  // (docs/simulator.md): the odometric pose the AtGoal check reads jitters,
+  // so the check that fires is random even on a leg without NOISE.
+  const mission::Mission m = mission::load_mission_file(data("two_robot_relay.yaml"));
+  Models models = perfect_models(m);
+  const Mixture1 exact = evaluate(m, models).branches.at(0).robots[0].finish_time_s;
+  CHECK(exact.variance() == 0.0);  // a perfect odometry: one check
+  models.robots[0].motion.trans_rel_var = 0.05 * 0.05;
+  const SystemOutcome o = evaluate(m, models);
+  REQUIRE(o.branches.size() == 1);
+  const Mixture1 t = o.branches[0].robots[0].finish_time_s;
+  // About 2.8 m at 0.03 m a cycle, slowing to 0.012 m a cycle at the AtGoal
+  // circle inside the dropoff: the odometric distance is off by about 1.5 cm
+  // there, the crossing by about 1.2 cycles (0.12 s).
+  CHECK(std::sqrt(t.variance()) > 0.06);
+  CHECK(std::sqrt(t.variance()) < 0.25);
+  CHECK(std::abs(t.mean() - exact.mean()) < 0.1);
+  // Some of the runs fire a check or more before the deterministic one.
+  CHECK(t.cdf(exact.mean() - 0.05) > 0.05);
+  CHECK(t.cdf(exact.mean() - 0.05) < 0.95);
+}
+
 TEST_CASE("race: the uncertain order of two arrivals becomes two weighted branches") {
   const mission::Mission m = mission::load_mission_file(data("two_robot_race.yaml"));
   const SystemOutcome o = evaluate(m, perfect_models(m));
