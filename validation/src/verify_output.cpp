@@ -109,6 +109,8 @@ nlohmann::json verify_json(const mission::Mission& mission, const verifier::Veri
   j["blocked"] = blocked;
   j["approximations"] = approximations_json(r.approximations);
   j["loop_cutoff_mass"] = r.loop_cutoff_mass;
+  j["work_cutoff_mass"] = r.work_cutoff_mass;
+  j["work_cycles"] = r.work_cycles;
   j["branches"] = r.branches;
   j["subsystems"] = r.subsystems;
   if (r.grid) {
@@ -180,6 +182,11 @@ std::string verify_text(const mission::Mission& mission, const verifier::VerifyR
   if (r.loop_cutoff_mass > 0.0) {
     s += "  probability mass of loop laps beyond the budget " + format_scientific(r.loop_cutoff_mass, 2) +
          " (counted as failure)\n";
+  }
+  if (r.work_cutoff_mass > 0.0) {
+    s += "  the verifier's work budget (" + std::to_string(r.work_cycles) +
+         " robot cycles simulated, budget.max_work_cycles) ran out with probability mass " +
+         format_scientific(r.work_cutoff_mass, 2) + " unevaluated (counted as failure)\n";
   }
   s += "  " + std::to_string(r.subsystems) + " subsystems evaluated, " + std::to_string(r.branches) +
        " ordering branch(es)\n";

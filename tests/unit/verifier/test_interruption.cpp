@@ -131,7 +131,7 @@ Models perfect(const mission::Mission& m) {
 }
 
 double accounted(const SystemOutcome& o) {
-  double w = o.pruned_mass + o.blocked_mass + o.loop_cutoff_mass;
+  double w = o.pruned_mass + o.blocked_mass + o.loop_cutoff_mass + o.work_cutoff_mass;
   for (const Branch& b : o.branches) w += b.weight;
   return w;
 }

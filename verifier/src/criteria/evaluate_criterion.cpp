@@ -437,7 +437,7 @@ class Evaluator {
     }
     v.probability = groups[*worst].probability;
     v.required = groups[*worst].required;
-    const double lost = o_.pruned_mass + o_.blocked_mass + o_.loop_cutoff_mass;
+    const double lost = o_.pruned_mass + o_.blocked_mass + o_.loop_cutoff_mass + o_.work_cutoff_mass;
     if (lost > 0.0) {
       explanation += "; pruned and blocked mass " + format_probability(lost) + " counts as failure";
     }

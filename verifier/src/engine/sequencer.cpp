@@ -228,6 +228,12 @@ class Sequencer {
   void evaluate(std::vector<BranchState> active) {
     const std::size_t max_steps = models_.budget.max_events * std::max<std::size_t>(1, mission_.robots.size());
     for (std::size_t step = 0; !active.empty() && step < max_steps; ++step) {
+      if (outcome_.work_cycles > models_.budget.max_work_cycles) {
+        // Out of time for the robot's pre-launch check: what is left counts as failure.
+        for (const BranchState& b : active) outcome_.work_cutoff_mass += b.weight;
+        active.clear();
+        break;
+      }
       std::vector<BranchState> next;
       for (BranchState& b : active) advance(std::move(b), next);
       active = merge_and_prune(std::move(next));
@@ -361,6 +367,7 @@ class Sequencer {
     ctx.obstacles = obstacles_near(b, i, state);
     track.analysis = analyze_state(ctx, state, track.base, track.error);
     outcome_.subsystems += 1;
+    outcome_.work_cycles += track.analysis.cycles_simulated;
     record_path_separations(b, i);
 
     // Exits driven by messages already on their way.

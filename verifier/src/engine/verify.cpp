@@ -231,6 +231,8 @@ Result<VerifyResult> verify(const mission::Mission& mission, const Models& model
   r.pruned_mass = o.pruned_mass;
   r.blocked_mass = o.blocked_mass;
   r.loop_cutoff_mass = o.loop_cutoff_mass;
+  r.work_cutoff_mass = o.work_cutoff_mass;
+  r.work_cycles = o.work_cycles;
   r.branches = o.branches.size();
   r.subsystems = o.subsystems;
 

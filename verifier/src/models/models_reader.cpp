@@ -219,7 +219,7 @@ Environment read_environment(const Map& root, const std::string& base_dir) {
 Budget read_budget(const Map& root) {
   Budget b;
   if (!root.has("budget")) return b;
-  const Map m = root.map("budget", {"max_components", "max_branches", "noise_sigma_points", "max_events"});
+  const Map m = root.map("budget", {"max_components", "max_branches", "noise_sigma_points", "max_events", "max_work_cycles"});
   const auto count = [&m](std::string_view key, std::int64_t hi, std::size_t fallback) {
     return m.has(key) ? static_cast<std::size_t>(m.integer(key, 1, hi)) : fallback;
   };
@@ -227,6 +227,7 @@ Budget read_budget(const Map& root) {
   b.max_branches = count("max_branches", 1000000, b.max_branches);
   b.noise_sigma_points = count("noise_sigma_points", 1000, b.noise_sigma_points);
   b.max_events = count("max_events", 1000000000, b.max_events);
+  b.max_work_cycles = count("max_work_cycles", 1'000'000'000'000, b.max_work_cycles);
   return b;
 }
 

@@ -169,6 +169,7 @@ std::string write_models(const Models& models) {
   out += "  max_branches: " + std::to_string(b.max_branches) + "\n";
   out += "  noise_sigma_points: " + std::to_string(b.noise_sigma_points) + "\n";
   out += "  max_events: " + std::to_string(b.max_events) + "\n";
+  out += "  max_work_cycles: " + std::to_string(b.max_work_cycles) + "\n";
   return out;
 }
 

@@ -103,6 +103,12 @@ struct Budget {
   std::size_t max_branches = 32;        ///< orderings carried at once
   std::size_t noise_sigma_points = 8;   ///< directions for NOISE's uniform angle
   std::size_t max_events = 10000;       ///< FSA transitions per robot before giving up (loops)
+  /// Robot control cycles the within-state models may simulate over the whole
+  /// mission (StateAnalysis::cycles_simulated, summed): the verifier's time
+  /// bound on a robot before launch. Branches still unevaluated when it runs
+  /// out are counted as failure (a lower bound on success, never a GO it
+  /// cannot vouch for) and said (SystemOutcome::work_cutoff_mass).
+  std::size_t max_work_cycles = 20'000'000;
   bool operator==(const Budget&) const = default;
 };
 

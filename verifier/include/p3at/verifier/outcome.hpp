@@ -99,6 +99,10 @@ struct SystemOutcome {
   /// same state more than Budget::max_events / 100 times, at least once, in one
   /// branch): the tail-recursion unrolled lap by lap, the rest counted as failure.
   double loop_cutoff_mass = 0.0;
+  /// Mass of the branches still unevaluated when Budget::max_work_cycles ran
+  /// out, counted as failure.
+  double work_cutoff_mass = 0.0;
+  std::size_t work_cycles = 0;    ///< robot control cycles the within-state models simulated
   std::size_t subsystems = 0;     ///< TR subsystems evaluated (Def. 10 steps), summed over branches
   std::size_t ordering_splits = 0;  ///< events where more than one robot could plausibly fire first
   std::vector<BlockedRecord> blocked;          ///< who blocked_mass belongs to

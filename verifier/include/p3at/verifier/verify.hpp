@@ -86,6 +86,8 @@ struct VerifyResult {
   double pruned_mass = 0.0;
   double blocked_mass = 0.0;
   double loop_cutoff_mass = 0.0;  ///< SystemOutcome::loop_cutoff_mass
+  double work_cutoff_mass = 0.0;  ///< SystemOutcome::work_cutoff_mass (counted as failure)
+  std::size_t work_cycles = 0;    ///< SystemOutcome::work_cycles
   std::size_t branches = 0;
   std::size_t subsystems = 0;
   std::vector<BlockedRobot> blocked;          ///< who blocked_mass belongs to

@@ -1,0 +1,61 @@
+// The verifier's work budget (Budget::max_work_cycles): a mission whose
+// within-state models would simulate more robot cycles than the budget is
+// cut off deterministically, and the mass left unevaluated is reported and
+// counted as failure, so the answer is a lower bound on success (never a GO
+// the model did not compute).
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include "p3at/mission/loader.hpp"
+#include "p3at/verifier/models.hpp"
+#include "p3at/verifier/verify.hpp"
+
+using namespace p3at;
+using namespace p3at::verifier;
+
+namespace {
+
+const std::string kExample = std::string(P3AT_SOURCE_DIR) + "/examples/bounding_overwatch/";
+
+double accounted(const SystemOutcome& o) {
+  double w = o.pruned_mass + o.blocked_mass + o.loop_cutoff_mass + o.work_cutoff_mass;
+  for (const Branch& b : o.branches) w += b.weight;
+  return w;
+}
+
+}  // namespace
+
+TEST_CASE("work budget: the default leaves a shipped mission whole; a small one cuts it off as failure") {
+  const mission::Mission m = mission::load_mission_file(kExample + "mission.yaml");
+  const Models models = load_models_file(kExample + "models.yaml");
+  Result<SystemOutcome> whole = evaluate_system(m, models);
+  REQUIRE(whole);
+  CHECK(whole->work_cutoff_mass == 0.0);
+  CHECK(whole->work_cycles > 0);
+  CHECK(whole->work_cycles < models.budget.max_work_cycles);
+  Result<VerifyResult> full = verify(m, models, VerifyOptions{});
+  REQUIRE(full);
+  REQUIRE(full->p_joint > 0.2);  // the cut-off answer below must be lower
+  CHECK(full->work_cycles == whole->work_cycles);
+
+  Models tight = models;
+  tight.budget.max_work_cycles = whole->work_cycles / 4;
+  Result<SystemOutcome> cut = evaluate_system(m, tight);
+  REQUIRE(cut);
+  CHECK(cut->work_cutoff_mass > 0.5);
+  CHECK(accounted(*cut) == doctest::Approx(1.0).epsilon(1e-9));
+  // Stopped at the first event after the budget ran out: about the budget's work, not the whole mission's.
+  CHECK(cut->work_cycles < whole->work_cycles);
+  Result<VerifyResult> r = verify(m, tight, VerifyOptions{});
+  REQUIRE(r);
+  CHECK(r->work_cutoff_mass == doctest::Approx(cut->work_cutoff_mass));
+  CHECK(r->p_joint <= 1.0 - cut->work_cutoff_mass + 1e-12);
+  CHECK(r->p_joint < full->p_joint);
+
+  // Deterministic: the same cut every time (a count of cycles, not a clock).
+  Result<SystemOutcome> again = evaluate_system(m, tight);
+  REQUIRE(again);
+  CHECK(again->work_cycles == cut->work_cycles);
+  CHECK(again->work_cutoff_mass == cut->work_cutoff_mass);
+}
