@@ -86,8 +86,13 @@ double PathStepper::settle_phase(Walker& w, std::size_t transition, double* cros
   const double c = std::clamp((from - threshold) / (from - to), 0.0, 1.0);
   if (crossing_c) *crossing_c = c;
   // The odometric progress is off by N(0, progress_var) at the crossing,
-  // which moves the crossing by that over the last cycle's progress.
-  if (crossing_sd) *crossing_sd = std::sqrt(std::max(progress_var, 0.0)) / (from - to);
+  // along the direction of motion: that moves the crossing by that over the
+  // last cycle's step along the same direction (for AtGoal the step's length,
+  // not its radial part: an approach at an angle projects the error and the
+  // step alike, and a grazing one would otherwise divide by almost 0).
+  double along = from - to;
+  if (std::holds_alternative<mission::AtGoalParams>(trigger)) along = std::hypot(w.q.x_m - w.before.x_m, w.q.y_m - w.before.y_m);
+  if (crossing_sd && along > 0.0) *crossing_sd = std::sqrt(std::max(progress_var, 0.0)) / along;
   const double phase = c - 0.5;
   w.q.x_m += phase * (w.q.x_m - w.before.x_m);
   w.q.y_m += phase * (w.q.y_m - w.before.y_m);
