@@ -24,6 +24,10 @@ constexpr std::size_t kMinCycleCap = 3000;
 // A crossing-time spread below this (cycles) puts less than 1e-12 of the
 // mass on another check unless the crossing is that close to one: kept whole.
 constexpr double kMinCrossingSdCycles = 1e-4;
+// An approach that has all but stalled (a step of almost nothing) would make
+// the spread unbounded (and the cycle range below overflow): beyond this many
+// cycles the split is capped.
+constexpr double kMaxCrossingSdCycles = 50.0;
 
 /// The self-timed triggers of a still robot's state: the first that holds at
 /// pose q, in file order (the executive's order), or nothing.
@@ -150,7 +154,7 @@ Mixture1 held_duration(const std::vector<const FinishedPath*>& by_direction, std
   std::vector<Component1> split;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const FinishedPath& p = *point_paths[i];
-    const double sd = p.crossing_sd;
+    const double sd = std::min(p.crossing_sd, kMaxCrossingSdCycles);
     if (!(p.crossing_c >= 0.0) || !(sd > kMinCrossingSdCycles)) {
       split.push_back(points[i]);
       continue;
