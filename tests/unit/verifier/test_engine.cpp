@@ -105,6 +105,29 @@ TEST_CASE("relay: random motion error spreads the true position, growing with di
   CHECK(b.robots[1].final_position.cov.norm() == doctest::Approx(0.0));
 }
 
+TEST_CASE("relay: the odometry's relative jitter spreads a noiseless leg's firing over whole cycles") {
+  // The simulator multiplies each odometric update by (1 + N(0, sd^2))
+  // (docs/simulator.md): the odometric pose the AtGoal check reads jitters,
+  // so the check that fires is random even on a leg without NOISE.
+  const mission::Mission m = mission::load_mission_file(data("two_robot_relay.yaml"));
+  Models models = perfect_models(m);
+  const Mixture1 exact = evaluate(m, models).branches.at(0).robots[0].finish_time_s;
+  CHECK(exact.variance() == 0.0);  // a perfect odometry: one check
+  models.robots[0].motion.trans_rel_var = 0.05 * 0.05;
+  const SystemOutcome o = evaluate(m, models);
+  REQUIRE(o.branches.size() == 1);
+  const Mixture1 t = o.branches[0].robots[0].finish_time_s;
+  // About 2.8 m at 0.03 m a cycle, slowing to 0.012 m a cycle at the AtGoal
+  // circle inside the dropoff: the odometric distance is off by about 1.5 cm
+  // there, the crossing by about 1.2 cycles (0.12 s).
+  CHECK(std::sqrt(t.variance()) > 0.06);
+  CHECK(std::sqrt(t.variance()) < 0.25);
+  CHECK(std::abs(t.mean() - exact.mean()) < 0.1);
+  // Some of the runs fire a check or more before the deterministic one.
+  CHECK(t.cdf(exact.mean() - 0.05) > 0.05);
+  CHECK(t.cdf(exact.mean() - 0.05) < 0.95);
+}
+
 TEST_CASE("race: the uncertain order of two arrivals becomes two weighted branches") {
   const mission::Mission m = mission::load_mission_file(data("two_robot_race.yaml"));
   const SystemOutcome o = evaluate(m, perfect_models(m));
@@ -308,4 +331,42 @@ TEST_CASE("a trigger's crossing phase is averaged: the end relative to the goal 
   }
   CHECK(hi - lo < 0.001);
   CHECK(lo > -0.3);  // past the AtGoal radius: it fired, then braked
+}
+
+TEST_CASE("meeting (tests/data/honest/meeting): the completion time has finite, plausible moments") {
+  // Two robots that each go on once they hear from the other: the messages'
+  // residuals shrink to subnormal spreads, which made Clark's maximum NaN and
+  // every branch's completion-time variance with it (the mission was refused
+  // by verify's guard). Validation (vipars validate ... --trials 4000 --seed 1
+  // of that folder): 38.86 +/- 0.24 s, every run within Tmax 75 s.
+  const std::string dir = std::string(P3AT_SOURCE_DIR) + "/tests/data/honest/meeting/";
+  const mission::Mission m = mission::load_mission_file(dir + "mission.yaml");
+  const Models models = load_models_file(dir + "models.yaml");
+  const SystemOutcome o = evaluate(m, models);
+  REQUIRE_FALSE(o.branches.empty());
+  double w = 0.0, mean = 0.0;
+  for (const Branch& b : o.branches) {
+    for (const Component1& c : b.completion_time_s.components) {
+      CHECK(std::isfinite(c.weight));
+      CHECK(std::isfinite(c.mean));
+      CHECK(std::isfinite(c.var));
+    }
+    w += b.weight;
+    mean += b.weight * b.completion_time_s.mean();
+  }
+  mean /= w;
+  double var = 0.0;
+  for (const Branch& b : o.branches) {
+    const double d = b.completion_time_s.mean() - mean;
+    var += b.weight * (b.completion_time_s.variance() + d * d);
+  }
+  var /= w;
+  CHECK(mean == doctest::Approx(38.86).epsilon(0.01));  // within 0.4 s
+  CHECK(std::sqrt(var) > 0.1);
+  CHECK(std::sqrt(var) < 0.6);
+  VerifyOptions options;
+  const Result<VerifyResult> r = verify(m, models, options);
+  REQUIRE(r);
+  CHECK(r->p_time == doctest::Approx(1.0).epsilon(1e-6));
+  for (const std::string& f : r->failed) CHECK(f.find("could not define") == std::string::npos);
 }

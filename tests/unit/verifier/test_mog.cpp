@@ -159,6 +159,26 @@ TEST_SUITE("maximum (Clark 1961)") {
     CHECK(high.mean() == doctest::Approx(5.0).epsilon(1e-15));
     CHECK(high.variance() == doctest::Approx(1e-6).epsilon(1e-12));
   }
+  TEST_CASE("a subnormal spread far from the other side: finite, the dominant side's moments") {
+    // A delivered message's residual max(D - R, 0), moment-matched event after
+    // event, shrinks to a point at 0 with a subnormal variance (these are the
+    // values tests/data/honest/meeting produced): against a cycle of 0.1 s the
+    // standardised gap is -1e157, whose square overflowed and made the
+    // variance inf * 0 = NaN.
+    const Mixture1 residual = Mixture1::gaussian(3.78169e-314, 5.31754e-318);
+    const Mixture1 seen = p3at::verifier::maximum(residual, 0.1);
+    REQUIRE(seen.components.size() == 1);
+    CHECK(seen.mean() == 0.1);
+    CHECK(seen.variance() == 0.0);
+    const Mixture1 both = p3at::verifier::maximum(residual, Mixture1::gaussian(0.1, 1e-300), 4);
+    CHECK(both.mean() == 0.1);
+    CHECK(both.variance() == 1e-300);
+    // The other way round: the tiny one is the larger one by far.
+    const Mixture1 above = p3at::verifier::maximum(Mixture1::gaussian(0.1, 5e-318), Mixture1::gaussian(0.0, 1e-320), 4);
+    CHECK(above.mean() == 0.1);
+    CHECK(std::isfinite(above.variance()));
+    CHECK(above.variance() >= 0.0);
+  }
   TEST_CASE("max with a constant against numerical integration: density f_X on (c, inf), mass F_X(c) at c") {
     const double m = 1.0;
     const double v = 2.0;

@@ -80,6 +80,8 @@ Walker merge(const std::vector<const Walker*>& members) {
     out.before.rot_radps += f * m->before.rot_radps;
     out.turned_rad += f * m->turned_rad;
     out.turned_before_rad += f * m->turned_before_rad;
+    out.odo_trans_var += f * m->odo_trans_var;
+    out.odo_turn_var += f * m->odo_turn_var;
     out.error.mean += f * m->error.mean;
     out.error.cov += f * m->error.cov;
   }
@@ -240,7 +242,7 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const Walker& start
           }
           if (const auto exit = stepper.fired(w)) {
             FinishedPath done{w, *exit, segment, j, 0.0};
-            done.phase_cycles = stepper.settle_phase(done.walker, *exit, &done.crossing_c, &done.step);
+            done.phase_cycles = stepper.settle_phase(done.walker, *exit, &done.crossing_c, &done.step, &done.crossing_sd);
             out.finished.push_back(done);
             break;
           }

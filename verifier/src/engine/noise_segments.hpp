@@ -35,6 +35,7 @@ struct FinishedPath {
   double phase_cycles = 0.0;     ///< settle_phase()'s offset
   double crossing_c = -1.0;      ///< the crossing's fraction into the last cycle (-1: not crossed by moving toward it)
   Eigen::Vector3d step = Eigen::Vector3d::Zero();  ///< the last cycle's step before the phase move
+  double crossing_sd = 0.0;      ///< the crossing time's sd in cycles from the odometry's random error
 };
 
 struct NoiseQuadrature {

@@ -57,8 +57,10 @@ std::optional<std::size_t> PathStepper::fired(const Walker& w) const {
   return std::nullopt;
 }
 
-double PathStepper::settle_phase(Walker& w, std::size_t transition, double* crossing_c, Eigen::Vector3d* step) const {
+double PathStepper::settle_phase(Walker& w, std::size_t transition, double* crossing_c, Eigen::Vector3d* step,
+                                 double* crossing_sd) const {
   if (crossing_c) *crossing_c = -1.0;
+  if (crossing_sd) *crossing_sd = 0.0;
   if (step) *step = Eigen::Vector3d(w.q.x_m - w.before.x_m, w.q.y_m - w.before.y_m, w.q.theta_rad - w.before.theta_rad);
   // The executive checks a trigger once per cycle, and where in that cycle a
   // real run crosses the threshold is as good as random: with the crossing a
@@ -66,21 +68,31 @@ double PathStepper::settle_phase(Walker& w, std::size_t transition, double* cros
   // that fires comes uniformly 0..1 cycle after it, on average c - 0.5 cycles
   // from the deterministic firing.
   const mission::TriggerParams& trigger = ctx_.robot->transitions[transition].trigger;
-  double from = 0.0, to = 0.0, threshold = 0.0;
+  double from = 0.0, to = 0.0, threshold = 0.0, progress_var = 0.0;
   if (const auto* g = std::get_if<mission::AtGoalParams>(&trigger)) {
     from = std::hypot(g->goal.x_m - w.before.x_m, g->goal.y_m - w.before.y_m);
     to = std::hypot(g->goal.x_m - w.q.x_m, g->goal.y_m - w.q.y_m);
     threshold = g->radius_m;
+    progress_var = w.odo_trans_var;
   } else if (const auto* h = std::get_if<mission::HasTurnedParams>(&trigger)) {
     from = -w.turned_before_rad;  // decreasing toward -threshold, like a distance
     to = -w.turned_rad;
     threshold = -(h->angle_deg - h->offset_deg) * kDegToRad;
+    progress_var = w.odo_turn_var;
   } else {
     return 0.0;
   }
   if (!(from > threshold) || !(from > to)) return 0.0;  // fired at once, or not by moving toward it
   const double c = std::clamp((from - threshold) / (from - to), 0.0, 1.0);
   if (crossing_c) *crossing_c = c;
+  // The odometric progress is off by N(0, progress_var) at the crossing,
+  // along the direction of motion: that moves the crossing by that over the
+  // last cycle's step along the same direction (for AtGoal the step's length,
+  // not its radial part: an approach at an angle projects the error and the
+  // step alike, and a grazing one would otherwise divide by almost 0).
+  double along = from - to;
+  if (std::holds_alternative<mission::AtGoalParams>(trigger)) along = std::hypot(w.q.x_m - w.before.x_m, w.q.y_m - w.before.y_m);
+  if (crossing_sd && along > 0.0) *crossing_sd = std::sqrt(std::max(progress_var, 0.0)) / along;
   const double phase = c - 0.5;
   w.q.x_m += phase * (w.q.x_m - w.before.x_m);
   w.q.y_m += phase * (w.q.y_m - w.before.y_m);
@@ -121,6 +133,8 @@ void PathStepper::step(Walker& w, double noise_angle_rad) const {
   w.turned_before_rad = w.turned_rad;
   const CycleIncrement inc = step_cycle(w.q, trans, rot, k);
   propagate(w.error, inc, ctx_.model->motion);
+  w.odo_trans_var += ctx_.model->motion.trans_rel_var * inc.ds_m * inc.ds_m;
+  w.odo_turn_var += ctx_.model->motion.rot_rel_var * inc.dtheta_rad * inc.dtheta_rad;
   w.turned_rad += std::abs(exec::wrap_angle_rad(inc.dtheta_rad));
   ++w.cycles;
 }

@@ -28,6 +28,13 @@ struct Walker {
   double turned_rad = 0.0;      ///< odometric turn accumulated since the state's entry
   double turned_before_rad = 0.0;
   std::size_t cycles = 0;       ///< cycles since the state's entry
+  /// Variance of the odometric distance driven (m^2) and turned (rad^2) since
+  /// the state's entry from the odometry's relative random error: the
+  /// simulator multiplies each update's odometric translation and rotation by
+  /// (1 + N(0, sd^2)) (docs/simulator.md), so it is the odometric pose, the
+  /// one the triggers read, that jitters, and when a trigger fires with it.
+  double odo_trans_var = 0.0;
+  double odo_turn_var = 0.0;
   double weight = 1.0;          ///< quadrature weight (probability) of this path
 };
 
@@ -42,9 +49,11 @@ class PathStepper {
   /// after it) and returns that offset in cycles, in [-0.5, 0.5]. When the
   /// trigger was crossed by moving toward it, `crossing_c` is the crossing's
   /// fraction into the last cycle (else -1) and `step` the last cycle's step
-  /// (x, y, heading) before the move, for settle_phases() (trigger_phase.hpp).
+  /// (x, y, heading) before the move, for settle_phases() (trigger_phase.hpp);
+  /// `crossing_sd` the crossing time's standard deviation in cycles from the
+  /// odometry's random error (Walker::odo_trans_var, odo_turn_var), else 0.
   double settle_phase(Walker& w, std::size_t transition, double* crossing_c = nullptr,
-                      Eigen::Vector3d* step = nullptr) const;
+                      Eigen::Vector3d* step = nullptr, double* crossing_sd = nullptr) const;
   /// One cycle under NOISE direction `noise_angle_rad`.
   void step(Walker& w, double noise_angle_rad) const;
 

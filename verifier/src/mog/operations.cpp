@@ -14,6 +14,16 @@ namespace {
 // Beyond this many standard deviations below 0, phi/Phi is computed from the
 // Mills ratio's continued fraction (Phi itself underflows near -37).
 constexpr double kMillsSwitch = -30.0;
+// Beyond this many standard deviations apart, the lower of two Gaussians
+// never decides their maximum in double precision (Phi(-40) ~ 4e-350
+// underflows to 0, and the mean's correction theta phi(40) is below any
+// rounding of m): the maximum is the higher one, exactly. It must be taken
+// as such rather than from the formula: a nearly-delivered message's
+// residual max(D - R, 0) shrinks toward a point at 0 with a subnormal
+// variance (5e-318 on tests/data/honest/meeting), and against a cycle of
+// 0.1 s alpha is then -1e157, alpha^2 overflows to inf, and inf * P(= 0)
+// made the variance NaN, which spread into every completion time.
+constexpr double kMaxDominates = 40.0;
 
 double total_weight(const Mixture1& x) {
   double total = 0.0;
@@ -43,6 +53,8 @@ Component1 clark_max(double weight, double m1, double v1, double m2, double v2) 
   if (!(theta2 > 0.0)) return Component1{weight, std::max(m1, m2), 0.0};  // two point masses
   const double theta = std::sqrt(theta2);
   const double alpha = (m1 - m2) / theta;
+  if (alpha > kMaxDominates) return Component1{weight, m1, v1};
+  if (alpha < -kMaxDominates) return Component1{weight, m2, v2};
   const double p = normal_cdf(alpha);
   const double q = normal_cdf(-alpha);
   const double f = normal_pdf(alpha);
