@@ -108,7 +108,7 @@ struct Budget {
   /// bound on a robot before launch. Branches still unevaluated when it runs
   /// out are counted as failure (a lower bound on success, never a GO it
   /// cannot vouch for) and said (SystemOutcome::work_cutoff_mass).
-  std::size_t max_work_cycles = 20'000'000;
+  std::size_t max_work_cycles = 100'000'000;
   bool operator==(const Budget&) const = default;
 };
 
