@@ -14,7 +14,10 @@
 # crash (the input is left in build/fuzz-long/<fuzzer>/artifacts/). The table
 # at the end (also in build/fuzz-long/summary.txt) gives per fuzzer: executions,
 # exec/s, wall seconds, CPU seconds (user+sys of the fuzzer process), final
-# coverage (cov = edges, ft = features, corp = corpus units) and crashes.
+# coverage (cov = edges, ft = features, corp = corpus units) and crashes
+# (inputs left in artifacts/, plus UBSan "runtime error" reports in the log).
+# The fuzz build's UBSan checks are recoverable; UBSAN_OPTIONS (as in
+# scripts/test.sh) makes the first "runtime error" abort, so it is a crash too.
 # Exit status: 0 if no fuzzer found anything, 1 otherwise, 2 on usage errors.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -27,7 +30,7 @@ while getopts "r:t:n:h" opt; do
     r) runs="$OPTARG" ;;
     t) seconds="$OPTARG" ;;
     n) niceness="$OPTARG" ;;
-    *) sed -n '2,18p' "$0" >&2; exit 2 ;;
+    *) sed -n '2,/^set -e/p' "$0" | grep '^#' >&2; exit 2 ;;
   esac
 done
 shift $((OPTIND - 1))
@@ -52,6 +55,9 @@ for entry in "${selected[@]}"; do
   fi
 done
 
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+
 # Builds only what changed (the fuzz flavour builds the fuzzers alone).
 bash scripts/build.sh fuzz >/dev/null
 
@@ -72,7 +78,7 @@ for entry in "${selected[@]}"; do
   log="$dir/fuzz.log"
   cmd=(nice -n "$niceness" build/fuzz/bin/"$name" -runs="$runs" -max_total_time="$cap"
        -timeout=60 -print_final_stats=1 -artifact_prefix="$dir/artifacts/" "$dir/corpus")
-  echo "fuzz-long: ${cmd[*]}" | tee "$log"
+  echo "fuzz-long: ASAN_OPTIONS=$ASAN_OPTIONS UBSAN_OPTIONS=$UBSAN_OPTIONS ${cmd[*]}" | tee "$log"
   status=0
   /usr/bin/time -f 'cpu_seconds %U %S wall_seconds %e' -o "$dir/time.txt" "${cmd[@]}" >>"$log" 2>&1 || status=$?
   final_stat() { sed -n "s/^stat::$1: *//p" "$log" | tail -1; }
@@ -86,6 +92,8 @@ for entry in "${selected[@]}"; do
   ft=$(sed -n 's/.*ft: \([0-9]*\).*/\1/p' <<<"$last")
   corp=$(sed -n 's/.*corp: \([0-9]*\).*/\1/p' <<<"$last")
   crashes=$(find "$dir/artifacts" -type f | wc -l)
+  ub=$(grep -c 'runtime error:' "$log" || true)
+  crashes=$((crashes + ub))
   if [ "$status" -ne 0 ] || [ "$crashes" -ne 0 ]; then
     found=1
     echo "fuzz-long: $name exited $status; artifacts: $(ls "$dir/artifacts")" >&2
