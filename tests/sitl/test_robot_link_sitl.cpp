@@ -287,6 +287,8 @@ std::size_t count_of(const std::string& text, const std::string& needle) {
 
 }  // namespace
 
+// The client's handshake resends (docs/hal.md, "Handshake resends") against the
+// real simulator's fault knobs; about 2 s and 1.5 s of wall time.
 TEST_CASE("p3at_sim loses the first OPEN and two ENABLEs: the bridge resends both and the robot drives") {
   test::SimProcess sim({"--drop-open", "1", "--drop-enable", "2"});
   REQUIRE(sim.ready());
