@@ -48,6 +48,8 @@ struct Options {
   std::string truth_csv;
   std::string host = "127.0.0.1";
   int watchdog_ms = 2000;
+  int drop_opens = 0;    // fault injection: OPENs each robot ignores at first
+  int drop_enables = 0;  // fault injection: ENABLE 1s each robot ignores at first
 };
 
 constexpr int kDefaultFirstPort = 8101;
@@ -96,6 +98,7 @@ int run(const Options& opt) {
     listeners.push_back(std::move(listener).value());
     firmware.push_back(std::make_unique<p3at::sim::FirmwareEmulator>(world, i, wall, log_line));
     firmware.back()->set_watchdog_ms(opt.watchdog_ms);
+    firmware.back()->drop_first_commands(opt.drop_opens, opt.drop_enables);
   }
   log_line("start robots=" + std::to_string(world.robot_count()) + " speedup=" + std::to_string(opt.speedup) +
            " seed=" + std::to_string(seed) + " watchdog_ms=" + std::to_string(opt.watchdog_ms) + " world=" + (opt.world_file.empty() ? "(default)" : opt.world_file));
@@ -170,6 +173,13 @@ int main(int argc, char** argv) {
                  "command watchdog in simulated ms (default 2000 like ARCOS; 0 = off). At --speedup X a "
                  "client must send a command at least every watchdog/X of wall time")
       ->check(CLI::Range(0, 60000));
+  app.add_option("--drop-open", opt.drop_opens,
+                 "fault injection: each robot ignores the first N OPEN commands, as if the line lost them "
+                 "(tests the client's resend; default 0)")
+      ->check(CLI::Range(0, 1000));
+  app.add_option("--drop-enable", opt.drop_enables,
+                 "fault injection: each robot ignores the first N ENABLE 1 commands (default 0)")
+      ->check(CLI::Range(0, 1000));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -109,8 +109,7 @@ Status ArcosClient::handshake() {
 
   info_.params = arcos::RobotParams::for_subclass(info_.identity.subclass);
   odometry_ = OdometryTracker(info_.params);
-  if (auto st = send(arcos::encode_command(arcos::Command::open, 1)); !st) return st;
-  opened_ = true;
+  if (auto st = open_until_sips(); !st) return st;
 
   // CONFIG is optional: repeat it for a while, and carry on without it.
   info_.config.reset();
@@ -134,24 +133,65 @@ Status ArcosClient::handshake() {
   }
 
   if (config_.enable_motors) {
-    if (auto st = send(arcos::encode_command(arcos::Command::enable, 1)); !st) return st;
+    if (auto st = enable_until_confirmed(); !st) return st;
     estop_latched_ = false;
-  }
-
-  // The session is up when the first SIP arrives.
-  if (stats_.sips == 0 || last_sip_us_ < clock_.now_us() - std::int64_t{config_.link_loss_ms} * 1000) {
-    const std::uint64_t before = stats_.sips;
-    const std::int64_t sip_deadline = clock_.now_us() + std::int64_t{config_.link_loss_ms} * 1000;
-    while (stats_.sips == before && clock_.now_us() < sip_deadline) {
-      if (auto st = read_and_dispatch(ms_between(clock_.now_us(), sip_deadline)); !st) return st;
-    }
-    if (stats_.sips == before) {
-      return make_error(Error::Code::timeout, stream_->describe() + ": robot opened but sent no SIP");
-    }
   }
   state_.link = hal::LinkState::ok;
   state_.why_stopped.clear();
   return {};
+}
+
+Status ArcosClient::open_until_sips() {
+  const std::uint64_t sips_before = stats_.sips;
+  for (int attempt = 1; attempt <= config_.open_attempts; ++attempt) {
+    if (attempt > 1) {
+      ++stats_.open_resends;
+      log::warn(config_.log_name, "event=open-resend attempt=" + std::to_string(attempt) + "/" +
+                                      std::to_string(config_.open_attempts) + " why=\"no SIP within " +
+                                      std::to_string(config_.open_resend_ms) + " ms of OPEN\"");
+    }
+    if (auto st = send(arcos::encode_command(arcos::Command::open, 1)); !st) return st;
+    opened_ = true;
+    const std::int64_t resend_at = clock_.now_us() + std::int64_t{config_.open_resend_ms} * 1000;
+    while (stats_.sips == sips_before && clock_.now_us() < resend_at) {
+      if (auto st = read_and_dispatch(ms_between(clock_.now_us(), resend_at)); !st) return st;
+    }
+    if (stats_.sips != sips_before) return {};
+  }
+  return make_error(Error::Code::timeout,
+                    stream_->describe() + ": robot opened but sent no SIP (" + std::to_string(config_.open_attempts) +
+                        " OPENs, " + std::to_string(config_.open_resend_ms) + " ms apart: OPEN or the SIPs lost)");
+}
+
+Status ArcosClient::enable_until_confirmed() {
+  const std::int64_t sip_period_limit_us = std::int64_t{config_.link_loss_ms} * 1000;
+  for (int attempt = 1; attempt <= config_.enable_attempts; ++attempt) {
+    if (attempt > 1) {
+      ++stats_.enable_resends;
+      log::warn(config_.log_name, "event=enable-resend attempt=" + std::to_string(attempt) + "/" +
+                                      std::to_string(config_.enable_attempts) + " why=\"" +
+                                      std::to_string(config_.enable_resend_sips) +
+                                      " SIPs after ENABLE show the motors off\"");
+    }
+    if (auto st = send(arcos::encode_command(arcos::Command::enable, 1)); !st) return st;
+    // Judge by SIPs that arrive after the ENABLE, never by an earlier one.
+    const std::uint64_t sips_at_send = stats_.sips;
+    std::int64_t sip_deadline = clock_.now_us() + sip_period_limit_us;
+    while (stats_.sips - sips_at_send < static_cast<std::uint64_t>(config_.enable_resend_sips)) {
+      const std::uint64_t before = stats_.sips;
+      if (auto st = read_and_dispatch(ms_between(clock_.now_us(), sip_deadline)); !st) return st;
+      if (stats_.sips != before) {
+        if (state_.motors_enabled) return {};
+        sip_deadline = clock_.now_us() + sip_period_limit_us;
+      } else if (clock_.now_us() >= sip_deadline) {
+        return make_error(Error::Code::timeout, stream_->describe() + ": SIPs stopped while enabling the motors");
+      }
+    }
+  }
+  return make_error(Error::Code::protocol,
+                    stream_->describe() + ": motors stayed off after " + std::to_string(config_.enable_attempts) +
+                        " ENABLE commands, " + std::to_string(config_.enable_resend_sips) + " SIPs apart" +
+                        (state_.estop_pressed ? " (the robot reports its e-stop pressed)" : " (ENABLE lost?)"));
 }
 
 Status ArcosClient::sync_once() {

@@ -78,7 +78,7 @@ std::string format_stats(const FirmwareStats& s) {
   out << "connections=" << s.connections << " packets=" << s.packets_received << " bad_packets=" << s.bad_packets
       << " garbage_bytes=" << s.garbage_bytes << " unknown_commands=" << s.unknown_commands
       << " motion_commands=" << s.motion_commands << " watchdog_trips=" << s.watchdog_trips
-      << " sips=" << s.sips_sent;
+      << " sips=" << s.sips_sent << " injected_drops=" << s.injected_drops;
   return out.str();
 }
 
@@ -186,11 +186,27 @@ FirmwareStats FirmwareEmulator::stats() const {
 
 void FirmwareEmulator::handle(const arcos::Packet& packet) {
   ++stats_.packets_received;
+  if (injected_drop(packet)) return;
   if (phase_ == Phase::open) {
     handle_command(packet);
   } else {
     handle_handshake(packet);
   }
+}
+
+bool FirmwareEmulator::injected_drop(const arcos::Packet& packet) {
+  // Command 1 is OPEN once SYNC2 has been answered (before that it is SYNC1).
+  const bool is_open = packet.id == static_cast<std::uint8_t>(Command::open) &&
+                       (phase_ == Phase::sync2 || phase_ == Phase::open);
+  const bool is_enable_on = phase_ == Phase::open && packet.id == static_cast<std::uint8_t>(Command::enable) &&
+                            arcos::decode_command(packet).value != 0;
+  int* left = is_open ? &opens_to_drop_ : is_enable_on ? &enables_to_drop_ : nullptr;
+  if (left == nullptr || *left == 0) return false;
+  --*left;
+  ++stats_.injected_drops;
+  log(std::string("fault robot=") + robot().name() + " dropped=" + (is_open ? "OPEN" : "ENABLE") +
+      " left=" + std::to_string(*left));
+  return true;
 }
 
 void FirmwareEmulator::handle_handshake(const arcos::Packet& packet) {

@@ -276,3 +276,63 @@ TEST_CASE("p3at_ctl: status and drive against the simulator; clear errors otherw
     CHECK(ctl.log().find("unknown scheme") != std::string::npos);
   }
 }
+
+namespace {
+
+std::size_t count_of(const std::string& text, const std::string& needle) {
+  std::size_t n = 0;
+  for (auto at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+// The client's handshake resends (docs/hal.md, "Handshake resends") against the
+// real simulator's fault knobs; about 2 s and 1.5 s of wall time.
+TEST_CASE("p3at_sim loses the first OPEN and two ENABLEs: the bridge resends both and the robot drives") {
+  test::SimProcess sim({"--drop-open", "1", "--drop-enable", "2"});
+  REQUIRE(sim.ready());
+  hal::SteadyClock clock;
+  auto client = make_client(sim.url(), clock);
+  REQUIRE(client->connect().ok());
+  CHECK(client->state().link == hal::LinkState::ok);
+  CHECK(client->state().motors_enabled);
+  // At least the lost ones; one more only if the machine delays a SIP past the resend time.
+  CHECK(client->stats().open_resends >= 1);
+  CHECK(client->stats().open_resends <= 2);
+  CHECK(client->stats().enable_resends >= 2);
+  CHECK(client->stats().enable_resends <= 3);
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (client->state().trans_vel_mps < 0.2 && std::chrono::steady_clock::now() < give_up) {
+    REQUIRE(client->set_velocity(0.3, 0.0).ok());
+    (void)client->wait_for_update(200);
+  }
+  CHECK(client->state().trans_vel_mps >= 0.2);
+  REQUIRE(client->disconnect().ok());
+  sim.process.signal(SIGTERM);
+  REQUIRE(sim.process.wait_exit(5.0) == 0);
+  const std::string log = sim.process.log();
+  CHECK(count_of(log, "fault robot=robot1 dropped=OPEN") == 1);
+  CHECK(count_of(log, "fault robot=robot1 dropped=ENABLE") == 2);
+  CHECK(log.find("injected_drops=3") != std::string::npos);
+  CHECK(log.find("motion_commands=0 ") == std::string::npos);
+}
+
+TEST_CASE("p3at_sim never honouring OPEN: the bridge gives up after 5 OPENs with a clear error, not a hang") {
+  test::SimProcess sim({"--drop-open", "1000"});
+  REQUIRE(sim.ready());
+  hal::SteadyClock clock;
+  auto client = make_client(sim.url(), clock);
+  const auto start = std::chrono::steady_clock::now();
+  const Status st = client->connect();
+  const double waited_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  REQUIRE_FALSE(st.ok());
+  CHECK(st.error().message.find("robot opened but sent no SIP (5 OPENs") != std::string::npos);
+  CHECK(waited_s >= 1.5);
+  CHECK(waited_s < 6.0);
+  CHECK(client->stats().open_resends == 4);
+  CHECK(client->state().link == hal::LinkState::disconnected);
+  sim.process.signal(SIGTERM);
+  REQUIRE(sim.process.wait_exit(5.0) == 0);
+  CHECK(count_of(sim.process.log(), "dropped=OPEN") == 5);
+}

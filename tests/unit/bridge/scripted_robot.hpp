@@ -36,6 +36,9 @@ class ScriptedRobot {
   bool garbage_replies = false;      // answers every command with text, not ARCOS packets (wrong device)
   bool corrupt_replies = false;      // answers SYNCs with packets whose checksum is wrong (noisy line)
   bool sips_paused = false;          // opened, but SIPs stop (link loss)
+  int opens_to_ignore = 0;           // lose this many OPENs (a lossy line)
+  int enables_to_ignore = 0;         // lose this many ENABLE 1s
+  bool estop_pressed = false;        // the e-stop button is in: ENABLE has no effect, SIPs say so
   std::uint16_t start_x = 0x7F00;    // near the 15-bit wrap
   std::uint16_t start_y = 100;
   std::int16_t start_th = 0;
@@ -99,7 +102,8 @@ class ScriptedRobot {
     sip.left_vel = static_cast<std::int16_t>(vel_mm_s);
     sip.right_vel = static_cast<std::int16_t>(vel_mm_s);
     sip.battery = 130;
-    sip.flags = static_cast<std::uint16_t>(enabled ? arcos::kFlagMotorsEnabled : 0);
+    sip.flags = static_cast<std::uint16_t>((enabled ? arcos::kFlagMotorsEnabled : 0) |
+                                           (estop_pressed ? arcos::kFlagEstop : 0));
     sip.sonar_count = 2;
     sip.sonar[0] = {3, 1234};
     sip.sonar[1] = {12, 4000};
@@ -144,7 +148,9 @@ class ScriptedRobot {
         return;
       }
       // Numbers 0, 1, 2 are SYNCs until SYNC2 has been answered; then 1 is OPEN.
-      if (synced_ && p.id == static_cast<std::uint8_t>(arcos::Command::open)) {
+      if (synced_ && p.id == static_cast<std::uint8_t>(arcos::Command::open) && opens_to_ignore > 0) {
+        --opens_to_ignore;
+      } else if (synced_ && p.id == static_cast<std::uint8_t>(arcos::Command::open)) {
         opened = true;
         next_sip_us_ = clock_.now_us() + 100'000;
       } else if (p.id == arcos::kSync0 || p.id == arcos::kSync1) {
@@ -163,8 +169,10 @@ class ScriptedRobot {
       synced_ = false;
       enabled = false;
       vel_mm_s = rvel_deg_s = 0;
+    } else if (is(Command::enable) && cmd.value != 0 && enables_to_ignore > 0) {
+      --enables_to_ignore;
     } else if (is(Command::enable)) {
-      enabled = cmd.value != 0;
+      enabled = cmd.value != 0 && !estop_pressed;
     } else if (is(Command::vel)) {
       vel_mm_s = cmd.value;
     } else if (is(Command::rvel)) {

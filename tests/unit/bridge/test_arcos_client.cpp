@@ -56,6 +56,27 @@ struct Rig {
   }
 };
 
+// The times at which the robot received OPEN: command 1 after the last SYNC2 (before it, 1 is SYNC1).
+std::vector<std::int64_t> open_times(const test::ScriptedRobot& robot) {
+  std::size_t from = 0;
+  for (std::size_t i = 0; i < robot.received.size(); ++i) {
+    if (robot.received[i].number == arcos::kSync2) from = i + 1;
+  }
+  std::vector<std::int64_t> out;
+  for (std::size_t i = from; i < robot.received.size(); ++i) {
+    if (robot.received[i].number == num(Command::open)) out.push_back(robot.received[i].at_us);
+  }
+  return out;
+}
+
+std::vector<std::int64_t> enable_on_times(const test::ScriptedRobot& robot) {
+  std::vector<std::int64_t> out;
+  for (const auto& c : robot.received) {
+    if (c.number == num(Command::enable) && c.value != 0) out.push_back(c.at_us);
+  }
+  return out;
+}
+
 }  // namespace
 
 TEST_CASE("handshake: SYNC0/1/2, OPEN, CONFIG, ENABLE against a reference robot") {
@@ -90,6 +111,85 @@ TEST_CASE("CONFIG unanswered is tolerated, after repeating it") {
   CHECK(configs >= 4);  // every 200 ms for 1 s
   CHECK(configs <= 6);
   CHECK(rig.client->state().link == hal::LinkState::ok);
+}
+
+TEST_CASE("a lost OPEN is resent 300 ms later when no SIP follows, and the session comes up") {
+  Rig rig;
+  rig.robot.opens_to_ignore = 2;
+  REQUIRE(rig.client->connect().ok());
+  CHECK(rig.client->state().link == hal::LinkState::ok);
+  const auto opens = open_times(rig.robot);
+  REQUIRE(opens.size() == 3);
+  CHECK(opens[1] - opens[0] >= 300'000);
+  CHECK(opens[1] - opens[0] <= 320'000);
+  CHECK(opens[2] - opens[1] >= 300'000);
+  CHECK(rig.client->stats().open_resends == 2);
+  // CONFIG only once the robot is open: it answered, so none were wasted on a closed robot.
+  REQUIRE(rig.client->info().config.has_value());
+}
+
+TEST_CASE("OPEN never answered by SIPs: five OPENs over 1.5 s, then a clear error, not a hang") {
+  Rig rig;
+  rig.robot.opens_to_ignore = 1000;
+  const std::int64_t start = rig.clock.now_us();
+  auto st = rig.client->connect();
+  REQUIRE_FALSE(st.ok());
+  CHECK(st.error().code == Error::Code::timeout);
+  CHECK(st.error().message.find("robot opened but sent no SIP") != std::string::npos);
+  CHECK(st.error().message.find("5 OPENs") != std::string::npos);
+  const auto opens = open_times(rig.robot);
+  CHECK(opens.size() == 5);
+  CHECK(rig.client->stats().open_resends == 4);
+  const double waited_s = static_cast<double>(rig.clock.now_us() - start) / 1e6;
+  CHECK(waited_s >= 1.5);
+  CHECK(waited_s <= 1.8);
+  CHECK(rig.client->state().link == hal::LinkState::disconnected);
+  CHECK(rig.client->stats().handshake_failures == 1);
+}
+
+TEST_CASE("a lost ENABLE is resent when three SIPs after it show the motors off") {
+  Rig rig;
+  rig.robot.enables_to_ignore = 1;
+  REQUIRE(rig.client->connect().ok());
+  CHECK(rig.robot.enabled);
+  CHECK(rig.client->state().motors_enabled);
+  const auto enables = enable_on_times(rig.robot);
+  REQUIRE(enables.size() == 2);
+  // Three SIP cycles of 100 ms between them.
+  CHECK(enables[1] - enables[0] >= 250'000);
+  CHECK(enables[1] - enables[0] <= 400'000);
+  CHECK(rig.client->stats().enable_resends == 1);
+  REQUIRE(rig.client->set_velocity(0.2, 0.0).ok());
+  rig.run_for(0.5);
+  CHECK(rig.client->state().trans_vel_mps == doctest::Approx(0.2));
+}
+
+TEST_CASE("motors that stay off (e-stop pressed): five ENABLEs, then an error that names the e-stop") {
+  Rig rig;
+  rig.robot.estop_pressed = true;
+  auto st = rig.client->connect();
+  REQUIRE_FALSE(st.ok());
+  CHECK(st.error().message.find("motors stayed off after 5 ENABLE commands") != std::string::npos);
+  CHECK(st.error().message.find("e-stop pressed") != std::string::npos);
+  CHECK(enable_on_times(rig.robot).size() == 5);
+  CHECK(rig.client->stats().enable_resends == 4);
+  CHECK(rig.client->state().link == hal::LinkState::disconnected);
+
+  Rig lossy;
+  lossy.robot.enables_to_ignore = 1000;
+  st = lossy.client->connect();
+  REQUIRE_FALSE(st.ok());
+  CHECK(st.error().message.find("(ENABLE lost?)") != std::string::npos);
+}
+
+TEST_CASE("with enable_motors off the client neither sends nor waits for ENABLE") {
+  bridge::ClientConfig config;
+  config.enable_motors = false;
+  Rig rig(config);
+  REQUIRE(rig.client->connect().ok());
+  CHECK(enable_on_times(rig.robot).empty());
+  CHECK_FALSE(rig.client->state().motors_enabled);
+  CHECK(rig.client->stats().enable_resends == 0);
 }
 
 TEST_CASE("a robot still open from an earlier client is closed and re-synced") {

@@ -42,6 +42,17 @@ struct ClientConfig {
   /// every cycle, uses 10 SIPs, half the firmware watchdog (2 s).
   int motion_stale_sips = 0;
   int link_loss_ms = 1000;           ///< no SIP for this long → link lost
+  /// OPEN and ENABLE are single packets that a lossy line, a stalled peer or a
+  /// busy simulator can lose; without them a robot never streams SIPs or never
+  /// moves. Both are resent on a bounded schedule (docs/hal.md, "Handshake
+  /// resends"): OPEN when no SIP follows it within open_resend_ms (3 SIP cycles
+  /// of 100 ms: the first SIP is due within one)…
+  int open_resend_ms = 300;
+  int open_attempts = 5;             ///< …at most this many OPENs in all (1.5 s), then give up
+  /// ENABLE 1 again when this many SIPs after it still show the motors off (a
+  /// SIP already in flight when ENABLE arrives may predate it: one is normal)…
+  int enable_resend_sips = 3;
+  int enable_attempts = 5;           ///< …at most this many ENABLEs in all (15 SIPs, 1.5 s), then give up
   int close_grace_ms = 100;          ///< between ENABLE 0 and CLOSE on disconnect
   bool serial_preamble = false;      ///< send ARIA's "WMS2\r" first (serial links only)
   bool enable_motors = true;         ///< ENABLE 1 after connecting
@@ -67,6 +78,8 @@ struct ClientStats {
   std::uint64_t stale_motion_stops = 0;  ///< STOPs sent because the caller stopped asking for motion
   std::uint64_t handshakes = 0;       ///< completed handshakes
   std::uint64_t handshake_failures = 0;
+  std::uint64_t open_resends = 0;     ///< OPENs sent again because no SIP followed
+  std::uint64_t enable_resends = 0;   ///< ENABLE 1s sent again because SIPs showed the motors off
   std::uint64_t link_losses = 0;
   std::uint64_t reconnects = 0;       ///< completed handshakes after a link loss
   std::uint64_t refused_motion = 0;   ///< motion requests refused because the link was not ok
@@ -110,6 +123,10 @@ class ArcosClient final : public hal::DriveBase {
  private:
   Status handshake();
   Status sync_once();
+  /// OPEN, resent until the first SIP arrives (at most open_attempts OPENs).
+  Status open_until_sips();
+  /// ENABLE 1, resent until a SIP shows the motors on (at most enable_attempts).
+  Status enable_until_confirmed();
   /// Next packet with `id` (any packet when nullopt), handling SIPs on the way when sips_ok.
   Result<arcos::Packet> wait_for_packet(std::optional<std::uint8_t> id, std::int64_t deadline_us, bool sips_ok);
   Status read_and_dispatch(int timeout_ms);

@@ -30,6 +30,7 @@ struct FirmwareStats {
   std::uint64_t motion_commands = 0;   ///< see ControllerStats::motion_commands
   std::uint64_t watchdog_trips = 0;    ///< see ControllerStats::watchdog_trips
   std::uint64_t sips_sent = 0;
+  std::uint64_t injected_drops = 0;    ///< commands ignored on purpose (drop_first_commands)
 };
 
 /// One line per stats field, "key=value" separated by spaces (for logs).
@@ -52,6 +53,14 @@ class FirmwareEmulator {
   /// Default 2000 ms, as on a real P3-AT. Applies from the next OPEN.
   void set_watchdog_ms(int watchdog_ms) { watchdog_ms_ = watchdog_ms > 0 ? watchdog_ms : 0; }
   int watchdog_ms() const { return watchdog_ms_; }
+
+  /// Fault injection for tests of the client's resends: ignore the first
+  /// `opens` OPEN and the first `enables` ENABLE 1 commands this robot receives
+  /// (over all connections), as if the line had lost them. Each is logged.
+  void drop_first_commands(int opens, int enables) {
+    opens_to_drop_ = opens > 0 ? opens : 0;
+    enables_to_drop_ = enables > 0 ? enables : 0;
+  }
 
   /// Takes ownership of a newly accepted client. A current client is dropped first.
   void attach(std::unique_ptr<hal::ByteStream> stream);
@@ -88,6 +97,8 @@ class FirmwareEmulator {
   enum class Phase { idle, sync0, sync1, sync2, open };
 
   void handle(const arcos::Packet& packet);
+  /// True when `packet` is one drop_first_commands() asked to lose.
+  bool injected_drop(const arcos::Packet& packet);
   void handle_handshake(const arcos::Packet& packet);
   void handle_command(const arcos::Packet& packet);
   void send(const arcos::Frame& frame);
@@ -107,6 +118,8 @@ class FirmwareEmulator {
   int watchdog_ms_ = 2000;
   const char* pending_drop_ = nullptr;   ///< set while handling a packet that ends the session
   bool was_halted_ = false;
+  int opens_to_drop_ = 0;
+  int enables_to_drop_ = 0;
   FirmwareStats stats_{};
 };
 
