@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "criteria/events.hpp"
+#include "p3at/common/number_format.hpp"
 #include "p3at/verifier/criteria.hpp"
 #include "p3at/verifier/mog.hpp"
 #include "p3at/verifier/pars/equivalence.hpp"
@@ -53,11 +54,7 @@ Term robot_trace(const std::string& robot) {
                         pars::process("In", {pars::name("v_" + robot), pars::name("U_" + robot)})})});
 }
 
-std::string format_probability(double p) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g", p);
-  return buffer;
-}
+std::string format_probability(double p) { return format_general(p, 4); }
 
 struct Group {
   std::string text;                 // what it requires, for the explanation

@@ -11,6 +11,7 @@
 #include <tuple>
 #include <variant>
 
+#include "p3at/common/number_format.hpp"
 #include "p3at/common/yaml_document.hpp"
 
 namespace p3at::verifier {
@@ -49,16 +50,8 @@ double segment_distance(P a, P b, P c, P d) {
                    norm(closest_on(c, d, b) - b)});
 }
 
-std::string num(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
-std::string pt(P p) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "(%.2f, %.2f)", p.x, p.y);
-  return buf;
-}
+std::string num(double v, int decimals) { return format_fixed(v, decimals); }
+std::string pt(P p) { return "(" + format_fixed(p.x, 2) + ", " + format_fixed(p.y, 2) + ")"; }
 
 /// Where a robot may be when it enters each state: the start for the
 /// initial state; a GoToGuarded's goal after its AtGoal; anywhere on the leg

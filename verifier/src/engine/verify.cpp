@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "engine/sequencer.hpp"
+#include "p3at/common/number_format.hpp"
 #include "p3at/verifier/criteria.hpp"
 
 namespace p3at::verifier {
@@ -166,11 +167,7 @@ Region classify(double p, const VerifyOptions& options) {
   return Region::uncertain;
 }
 
-std::string fixed(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
+std::string fixed(double v, int decimals) { return format_fixed(v, decimals); }
 
 // The criterion point (the mission's, overridden by the options), checked.
 Result<VerifyResult> criteria_point(const mission::Mission& mission, const VerifyOptions& options) {
