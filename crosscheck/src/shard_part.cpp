@@ -2,6 +2,8 @@
 
 #include "p3at/crosscheck/shard_part.hpp"
 
+#include "p3at/common/file_bytes.hpp"
+
 #include <algorithm>
 #include <limits>
 #include <ostream>
@@ -184,7 +186,7 @@ Result<CrosscheckPart> parse_crosscheck_part(std::string_view text, const std::s
 }
 
 Result<CrosscheckPart> read_crosscheck_part_file(const std::string& path) {
-  auto text = team_sim::read_whole_file(path);
+  auto text = read_file_bytes(path);
   if (!text) return text.error();
   return parse_crosscheck_part(*text, path);
 }

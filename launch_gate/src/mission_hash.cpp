@@ -72,26 +72,5 @@ std::string mission_content_hash(std::string_view mission_bytes, std::string_vie
   return h.hex();
 }
 
-Result<std::string> read_file_bytes(const std::string& path) {
-  // A directory opens as a stream that reads nothing ("empty models file");
-  // a FIFO would block. Say what the path is instead.
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
-    return make_error(Error::Code::invalid_argument,
-                      path + ": is " + (std::filesystem::is_directory(status) ? "a directory" : "not a regular file") +
-                          ", expected a file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    const int err = errno;
-    return make_error(err == ENOENT ? Error::Code::not_found : Error::Code::io,
-                      path + ": cannot open: " + std::strerror(err));
-  }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) return make_error(Error::Code::io, path + ": read error");
-  return ss.str();
-}
 
 }  // namespace p3at::gate

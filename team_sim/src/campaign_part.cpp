@@ -14,6 +14,7 @@
 
 #include "p3at/common/number_format.hpp"
 #include "p3at/team_sim/empirical.hpp"
+#include "p3at/common/file_bytes.hpp"
 #include "p3at/team_sim/part_file.hpp"
 #include "p3at/team_sim/run_seed.hpp"
 
@@ -515,7 +516,7 @@ Result<CampaignPart> parse_part(std::string_view text, const std::string& source
 }
 
 Result<CampaignPart> read_part_file(const std::string& path) {
-  auto text = read_whole_file(path);
+  auto text = read_file_bytes(path);
   if (!text) return text.error();
   return parse_part(*text, path);
 }

@@ -69,18 +69,6 @@ Status write_file_whole(const std::string& path, const std::function<void(std::o
   return {};
 }
 
-Result<std::string> read_whole_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    const int err = errno;
-    return make_error(err == ENOENT ? Error::Code::not_found : Error::Code::io,
-                      path + ": cannot open: " + std::strerror(err));
-  }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) return make_error(Error::Code::io, path + ": read error");
-  return ss.str();
-}
 
 std::size_t PartLines::count() const { return static_cast<std::size_t>(std::count(text_.begin(), text_.end(), '\n')); }
 

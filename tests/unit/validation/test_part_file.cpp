@@ -7,6 +7,7 @@
 #include <fstream>
 #include <string>
 
+#include "p3at/common/file_bytes.hpp"
 #include "p3at/team_sim/part_file.hpp"
 
 using namespace p3at::team_sim;
@@ -51,15 +52,15 @@ TEST_CASE("PartLines numbers lines; expect_line checks the key and the number of
   CHECK(end.error().message == "p.part:3: expected 'd', got the end of the file");
 }
 
-TEST_CASE("write_file_whole and read_whole_file: the bytes back; a missing file is not_found") {
+TEST_CASE("write_file_whole, then read_file_bytes: the bytes back; a missing file is not_found") {
   const std::string path = "/tmp/p3at-part-file-test-" + std::to_string(::getpid()) + ".part";
   REQUIRE(write_file_whole(path, [](std::ostream& out) { out << "one\ntwo\n"; }));
-  const auto text = read_whole_file(path);
+  const auto text = p3at::read_file_bytes(path);
   REQUIRE(text);
   CHECK(*text == "one\ntwo\n");
   CHECK_FALSE(std::ifstream(path + ".tmp").good());  // renamed into place, no temporary left
   std::remove(path.c_str());
-  const auto missing = read_whole_file(path);
+  const auto missing = p3at::read_file_bytes(path);
   REQUIRE_FALSE(missing);
   CHECK(missing.error().code == p3at::Error::Code::not_found);
   CHECK(missing.error().message.find(path + ": cannot open") == 0);

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "p3at/common/file_bytes.hpp"
 #include "p3at/common/result.hpp"
 #include "p3at/verifier/models.hpp"
 
@@ -23,7 +24,7 @@ namespace p3at::gate {
 std::string mission_content_hash(std::string_view mission_bytes, std::string_view models_bytes,
                                  const std::vector<verifier::Wall>& walls);
 
-/// Reads a whole file. Error (not_found / io) names the file.
-Result<std::string> read_file_bytes(const std::string& path);
+/// Reads a whole file (common/file_bytes.hpp). Error (not_found / io) names the file.
+using ::p3at::read_file_bytes;
 
 }  // namespace p3at::gate

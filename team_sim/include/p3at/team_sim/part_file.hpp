@@ -42,8 +42,6 @@ Result<CheckedPart> check_part(std::string_view text, const std::string& source,
 /// looks finished.
 Status write_file_whole(const std::string& path, const std::function<void(std::ostream&)>& write);
 
-/// The whole file: not_found or io errors, "path: cannot open: ...".
-Result<std::string> read_whole_file(const std::string& path);
 
 /// A part's lines in order, numbered from 1 for messages.
 class PartLines {
