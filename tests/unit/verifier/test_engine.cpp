@@ -7,6 +7,8 @@
 #include <cmath>
 #include <string>
 
+#include "outcome_mass.hpp"
+
 #include "p3at/mission/loader.hpp"
 #include "p3at/verifier/models.hpp"
 #include "p3at/verifier/verify.hpp"
@@ -36,11 +38,6 @@ SystemOutcome evaluate(const mission::Mission& m, const Models& models) {
   return *o;
 }
 
-double total_weight(const SystemOutcome& o) {
-  double w = o.pruned_mass + o.blocked_mass;
-  for (const Branch& b : o.branches) w += b.weight;
-  return w;
-}
 
 }  // namespace
 
@@ -131,7 +128,7 @@ TEST_CASE("relay: the odometry's relative jitter spreads a noiseless leg's firin
 TEST_CASE("race: the uncertain order of two arrivals becomes two weighted branches") {
   const mission::Mission m = mission::load_mission_file(data("two_robot_race.yaml"));
   const SystemOutcome o = evaluate(m, perfect_models(m));
-  CHECK(total_weight(o) == doctest::Approx(1.0).epsilon(1e-9));
+  CHECK(test::accounted_mass(o) == doctest::Approx(1.0).epsilon(1e-9));
   // The first arrival was uncertain (a split), and both orderings end in the
   // same configuration, so they were merged back into one branch.
   CHECK(o.ordering_splits >= 1);

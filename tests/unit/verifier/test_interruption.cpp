@@ -8,6 +8,7 @@
 
 #include "engine/interruption.hpp"
 #include "engine/race.hpp"
+#include "outcome_mass.hpp"
 #include "p3at/mission/loader.hpp"
 #include "p3at/verifier/models.hpp"
 #include "p3at/verifier/verify.hpp"
@@ -130,11 +131,6 @@ Models perfect(const mission::Mission& m) {
   return models;
 }
 
-double accounted(const SystemOutcome& o) {
-  double w = o.pruned_mass + o.blocked_mass + o.loop_cutoff_mass + o.work_cutoff_mass;
-  for (const Branch& b : o.branches) w += b.weight;
-  return w;
-}
 
 }  // namespace
 
@@ -144,7 +140,7 @@ TEST_CASE("patrol until relieved: the laps' masses and the cut-off sum to 1; the
   const Models models = perfect(m);
   Result<SystemOutcome> o = evaluate_system(m, models);
   REQUIRE(o);
-  CHECK(accounted(*o) == doctest::Approx(1.0).epsilon(1e-9));
+  CHECK(test::accounted_mass(*o) == doctest::Approx(1.0).epsilon(1e-9));
   CHECK(o->loop_cutoff_mass == 0.0);
   REQUIRE_FALSE(o->branches.empty());
   double relieved = 0.0;
@@ -168,7 +164,7 @@ TEST_CASE("patrol until relieved: the laps' masses and the cut-off sum to 1; the
   Result<SystemOutcome> cut = evaluate_system(m, tight);
   REQUIRE(cut);
   CHECK(cut->loop_cutoff_mass > 0.5);
-  CHECK(accounted(*cut) == doctest::Approx(1.0).epsilon(1e-9));
+  CHECK(test::accounted_mass(*cut) == doctest::Approx(1.0).epsilon(1e-9));
   Result<VerifyResult> r = verify(m, tight, VerifyOptions{});
   REQUIRE(r);
   CHECK(r->p_joint <= 1.0 - cut->loop_cutoff_mass + 1e-12);

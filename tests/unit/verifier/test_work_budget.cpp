@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "outcome_mass.hpp"
 #include "p3at/mission/loader.hpp"
 #include "p3at/verifier/models.hpp"
 #include "p3at/verifier/verify.hpp"
@@ -17,12 +18,6 @@ using namespace p3at::verifier;
 namespace {
 
 const std::string kExample = std::string(P3AT_SOURCE_DIR) + "/examples/bounding_overwatch/";
-
-double accounted(const SystemOutcome& o) {
-  double w = o.pruned_mass + o.blocked_mass + o.loop_cutoff_mass + o.work_cutoff_mass;
-  for (const Branch& b : o.branches) w += b.weight;
-  return w;
-}
 
 }  // namespace
 
@@ -44,7 +39,7 @@ TEST_CASE("work budget: the default leaves a shipped mission whole; a small one 
   Result<SystemOutcome> cut = evaluate_system(m, tight);
   REQUIRE(cut);
   CHECK(cut->work_cutoff_mass > 0.5);
-  CHECK(accounted(*cut) == doctest::Approx(1.0).epsilon(1e-9));
+  CHECK(test::accounted_mass(*cut) == doctest::Approx(1.0).epsilon(1e-9));
   // Stopped at the first event after the budget ran out: about the budget's work, not the whole mission's.
   CHECK(cut->work_cycles < whole->work_cycles);
   Result<VerifyResult> r = verify(m, tight, VerifyOptions{});
