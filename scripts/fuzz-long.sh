@@ -4,10 +4,12 @@
 # seed corpus into build/fuzz-long/<fuzzer>/corpus, so every run is reproducible
 # from the tree. Not part of CI (CI runs each fuzzer for P3AT_FUZZ_SECONDS).
 #
-#   scripts/fuzz-long.sh [-r RUNS] [-t SECONDS] [-n NICE] [FUZZER[:SECONDS] ...]
+#   scripts/fuzz-long.sh [-r RUNS] [-t SECONDS] [-n NICE] [-o DIR] [FUZZER[:SECONDS] ...]
 #     -r RUNS     executions per fuzzer (default 10000000)
 #     -t SECONDS  time cap per fuzzer (default 3600); FUZZER:SECONDS overrides it
 #     -n NICE     niceness of the fuzzers (default 15: the machine is shared)
+#     -o DIR      where the corpora, logs and summary go (default build/fuzz-long);
+#                 two runs side by side (one per core) need two directories
 #     FUZZER      a target name (fuzz_arcos_decoder, ...); default: all of them
 #
 # A fuzzer stops at whichever of RUNS or SECONDS comes first, or at its first
@@ -25,11 +27,13 @@ cd "$(dirname "$0")/.."
 runs=10000000
 seconds=3600
 niceness=15
-while getopts "r:t:n:h" opt; do
+out=build/fuzz-long
+while getopts "r:t:n:o:h" opt; do
   case "$opt" in
     r) runs="$OPTARG" ;;
     t) seconds="$OPTARG" ;;
     n) niceness="$OPTARG" ;;
+    o) out="$OPTARG" ;;
     *) sed -n '2,/^set -e/p' "$0" | grep '^#' >&2; exit 2 ;;
   esac
 done
@@ -61,7 +65,6 @@ export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 # Builds only what changed (the fuzz flavour builds the fuzzers alone).
 bash scripts/build.sh fuzz >/dev/null
 
-out=build/fuzz-long
 mkdir -p "$out"
 summary="$out/summary.txt"
 printf '%-22s %12s %8s %8s %8s %8s %8s %6s %8s\n' \
