@@ -113,7 +113,7 @@ Outcome run_case(Teammate teammate, double offset_s) {
 }  // namespace
 
 TEST_CASE("start times swept across the gate timeout: whenever a robot refused, no robot received a motion command") {
-  int launched = 0, refused = 0;
+  int launched = 0, refused = 0, heard_refusal = 0;
   for (const double offset_s : {0.3, 1.2, 1.7, 1.9, 2.1, 2.3, 2.6, 3.6}) {
     INFO("robot2 GO, " << offset_s << " s after robot1's gate opened");
     const Outcome o = run_case(Teammate::go, offset_s);
@@ -125,9 +125,14 @@ TEST_CASE("start times swept across the gate timeout: whenever a robot refused, 
       // robot1 refused at 2 s and is still telling why: robot2 hears the
       // refusal, not the GO robot1 published before it (or, if it came up
       // after robot1 left, nobody at all).
+      // Which of the two depends on how long robot2 takes to come up: on a
+      // loaded machine (CI runs the accuracy gate beside these) robot2 came
+      // up 2.6 s after robot1's gate opened only after robot1 had left. So
+      // each case accepts both, and the window itself must be hit at least
+      // once over the three offsets (checked after the sweep).
       CHECK(o.robot1 == test::kExitGateSilent);
-      if (kTimingAsReleased) CHECK(o.robot2 == test::kExitGateNoGo);
       if (o.robot2 == test::kExitGateNoGo) {
+        ++heard_refusal;
         CHECK(contains(o.log2, "teammate robot1 says NO-GO"));
         CHECK(contains(o.log2, "refused: no verdict from robot2"));
       } else {
@@ -141,6 +146,8 @@ TEST_CASE("start times swept across the gate timeout: whenever a robot refused, 
   }
   MESSAGE("swept: launched=" << launched << " refused=" << refused);
   if (kTimingAsReleased) CHECK(launched >= 1);
+  // robot2 heard robot1's refusal (not its earlier GO) in the window at least once.
+  if (kTimingAsReleased) CHECK(heard_refusal >= 1);
   CHECK(refused >= 3);
 }
 
