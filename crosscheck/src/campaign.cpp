@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -107,6 +108,30 @@ std::vector<double> scaled(const std::vector<double>& axis, double f) {
   std::vector<double> out;
   for (double v : axis) out.push_back(v * f);
   return out;
+}
+
+// A run's largest final distance when it completed, +inf when it did not: a
+// run cut off by its time budget (or aborted) has no final position, only the
+// place where it stood when it was stopped.
+double final_distance_m(const team_sim::RunResult& run) {
+  return run.success() ? team_sim::worst_distance_m(run) : std::numeric_limits<double>::infinity();
+}
+
+// The validation's radius curve as the cross-check scores it: P(the run
+// completed within its time budget and every robot ended within Rmax), at
+// each Rmax and shifted by -1 % and +1 %. The verifier's side is its joint
+// probability at Tmax = the budget. Both sides then speak of the same event:
+// `vipars validate`'s own P(r) counts a timed-out run by where its robots
+// stood when it was stopped (docs/validation.md), while the verifier has no
+// time budget and counts a robot that never finishes as a failure, so on a
+// mission no run completes the two read 1 and 0 of the same runs.
+std::vector<ValidationPoint> completed_radius_curve(const std::vector<team_sim::RunResult>& runs,
+                                                    const std::vector<double>& rmax, double budget_s) {
+  const std::vector<double> at_budget{budget_s};
+  const team_sim::EmpiricalGrid mid = team_sim::empirical_grid(runs, at_budget, rmax);
+  const team_sim::EmpiricalGrid lo = team_sim::empirical_grid(runs, at_budget, scaled(rmax, 1 - kShiftFraction));
+  const team_sim::EmpiricalGrid hi = team_sim::empirical_grid(runs, at_budget, scaled(rmax, 1 + kShiftFraction));
+  return curve_points(mid.joint.front(), lo.joint.front(), hi.joint.front());
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -283,7 +308,7 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
     std::vector<double> times, dists;
     for (const team_sim::RunResult& run : runs) {
       times.push_back(team_sim::completion_time_s(run));
-      dists.push_back(team_sim::worst_distance_m(run));
+      dists.push_back(final_distance_m(run));
     }
     const Rise wt = rise_of_sample(times), wr = rise_of_sample(dists);
     const auto span = [](const Rise& a, const Rise& b, double fallback_lo, double fallback_hi) {
@@ -355,8 +380,16 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
         wjoint[i].push_back({e.p, e.ci_low, e.ci_high, lo.joint[i][j].p, hi.joint[i][j].p});
       }
     }
-    r.score = score_mission(tax.values, rax.values, verified->grid->p_time, verified->grid->p_radius, vjoint,
-                            curve_points(mid.time, lo.time, hi.time), curve_points(mid.radius, lo.radius, hi.radius), wjoint);
+    // The radius curve both sides can define: completed within the runs' time
+    // budget, with every robot within Rmax (see completed_radius_curve()).
+    verifier::VerifyOptions at_budget;
+    at_budget.tmax_grid = {timeout_s};
+    at_budget.rmax_grid = rax.values;
+    Result<verifier::VerifyResult> budget_read = verifier::verify_outcome(mission, models, *outcome, at_budget);
+    if (!budget_read) throw std::runtime_error("verify: " + budget_read.error().message);
+    r.score = score_mission(tax.values, rax.values, verified->grid->p_time, budget_read->grid->p_joint.front(), vjoint,
+                            curve_points(mid.time, lo.time, hi.time), completed_radius_curve(runs, rax.values, timeout_s),
+                            wjoint);
 
     // 7. How to redo it: the whole mission, or each step in its folder.
     r.reproduce = o.command_prefix + " " +
