@@ -158,6 +158,16 @@ struct Track {
   std::size_t state = 0;
   BaseState base;                 ///< odometry at the current state's start
   ErrorState error;
+  /// The error's spread between NOISE paths kept apart (engine/error_mixture.hpp;
+  /// `error.cov` is still the total).
+  ErrorMixture error_mix;
+  /// The part of error_mix from before the last GoToGuarded (that leg's own
+  /// paths' errors are in spread_points, added per path to where it ended),
+  /// and the covariance of that leg's paths' errors (in error.cov, shown by
+  /// spread_points); `spread_points_within` is what the points average away.
+  ErrorMixture error_mix_before_leg;
+  Eigen::Matrix2d leg_paths_cov = Eigen::Matrix2d::Zero();
+  Eigen::Matrix2d spread_points_within = Eigen::Matrix2d::Zero();
   Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
   std::vector<Eigen::Vector2d> spread_points;  ///< the points `spread` is the covariance of (may be empty)
   StateAnalysis analysis;         ///< of the current state
@@ -670,11 +680,21 @@ class Sequencer {
       return;
     }
     t.interruption_bin = 0;
+    // The earlier paths' errors ride along this state's displacement; this
+    // state's own paths add theirs (independent draws of NOISE).
+    transport(t.error_mix, t.analysis.end.x_m - t.base.x_m, t.analysis.end.y_m - t.base.y_m);
+    transport(t.error_mix_before_leg, t.analysis.end.x_m - t.base.x_m, t.analysis.end.y_m - t.base.y_m);
+    if (t.analysis.sets_spread) {
+      t.error_mix_before_leg = t.error_mix;
+      t.leg_paths_cov = explained_cov(t.analysis.error_paths).topLeftCorner<2, 2>();
+    }
+    t.error_mix = convolve(t.error_mix, t.analysis.error_paths, kMaxErrorComponents);
     t.base = t.analysis.end;
     t.error = t.analysis.error;
     if (t.analysis.sets_spread) {
       t.spread = t.analysis.end_spread;
       t.spread_points = t.analysis.end_offsets;
+      t.spread_points_within = t.analysis.end_offsets_within;
       t.extra_cov.setZero();
     }
     const double now = b.clock.mean();
@@ -719,6 +739,12 @@ class Sequencer {
       }
       Track& ti = child.robots[i];
       ti.interruption_bin = bins.size() > 1 ? k_bin + 1 : 0;
+      // Only the earlier paths' errors are kept apart here; the interrupted
+      // leg's own spread between paths is in bin.error's covariance.
+      transport(ti.error_mix, bin.base.x_m - ti.base.x_m, bin.base.y_m - ti.base.y_m);
+      ti.error_mix_before_leg = ti.error_mix;  // the bin's offsets are odometric only
+      ti.leg_paths_cov.setZero();
+      ti.spread_points_within.setZero();
       ti.base = bin.base;
       ti.error = bin.error;
       ti.spread = bin.spread;
@@ -744,12 +770,29 @@ class Sequencer {
       r.finish_time_s = t.finish;
       r.final_position = t.true_position();
       // The mixture the final position is: one component per NOISE path end
-      // point, each with the error's own covariance.
-      for (const Eigen::Vector2d& offset : t.spread_points) {
-        Gaussian2 g;
-        g.mean = t.true_mean() + offset;
-        g.cov = t.error.cov.topLeftCorner<2, 2>() + t.extra_cov;
-        r.final_components.push_back(g);
+      // point of the last leg and per error component kept apart (each with
+      // its own spread plus the error's common covariance); without end
+      // points, their Gaussian spread goes into every component.
+      if (!t.spread_points.empty() || !t.error_mix.empty()) {
+        // With end points, they carry the last leg's paths' errors; without,
+        // the whole mixture does.
+        const ErrorMixture& kept = t.spread_points.empty() ? t.error_mix : t.error_mix_before_leg;
+        Eigen::Matrix3d shown = explained_cov(kept);
+        if (!t.spread_points.empty()) shown.topLeftCorner<2, 2>() += t.leg_paths_cov;
+        const Eigen::Matrix2d common = common_xy_cov(t.error.cov - shown, {}) + t.extra_cov +
+                                       (t.spread_points.empty() ? t.spread : t.spread_points_within);
+        const std::vector<Eigen::Vector2d> ends =
+            t.spread_points.empty() ? std::vector<Eigen::Vector2d>{Eigen::Vector2d::Zero()} : t.spread_points;
+        const ErrorMixture mix = kept.empty() ? ErrorMixture{ErrorComponent{}} : kept;
+        for (const Eigen::Vector2d& offset : ends) {
+          for (const ErrorComponent& c : mix) {
+            Gaussian2 g;
+            g.mean = t.true_mean() + offset + c.delta.head<2>();
+            g.cov = common + c.cov.topLeftCorner<2, 2>();
+            r.final_components.push_back(g);
+            r.final_weights.push_back(c.weight / static_cast<double>(ends.size()));
+          }
+        }
       }
       r.believed_position = Eigen::Vector2d(t.base.x_m, t.base.y_m);
       r.states = std::move(t.trace);
@@ -819,6 +862,11 @@ class Sequencer {
       ta.entry_clock = blend(ta.entry_clock, wa, tb.entry_clock, wb, k());
       const ErrorState errors[2] = {ta.error, tb.error};
       const double ws[2] = {wa, wb};
+      ta.error_mix = blend_branches(ta.error_mix, ta.error.mean, wa, tb.error_mix, tb.error.mean, wb, kMaxErrorComponents);
+      ta.error_mix_before_leg = blend_branches(ta.error_mix_before_leg, ta.error.mean, wa, tb.error_mix_before_leg,
+                                               tb.error.mean, wb, kMaxErrorComponents);
+      ta.leg_paths_cov = (wa * ta.leg_paths_cov + wb * tb.leg_paths_cov) / w;
+      ta.spread_points_within = (wa * ta.spread_points_within + wb * tb.spread_points_within) / w;
       ta.error = combine(errors, ws, 2);
       ta.spread = (wa * ta.spread + wb * tb.spread) / w;
       // Point j of both is the end of the same NOISE direction: blend them

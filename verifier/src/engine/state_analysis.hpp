@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include "engine/base_motion.hpp"
+#include "engine/error_mixture.hpp"
 #include "engine/error_state.hpp"
 #include "engine/leg_trajectory.hpp"
 #include "engine/sonar_model.hpp"
@@ -48,13 +49,21 @@ struct StateAnalysis {
   BaseState end;                      ///< mean odometric pose and velocities when the state ends
   Eigen::Matrix2d end_spread = Eigen::Matrix2d::Zero();  ///< odometric end-position spread (GoToGuarded)
   bool sets_spread = false;           ///< true when end_spread replaces the robot's previous spread
-  /// Each finished NOISE path's odometric end minus their mean (equal weights;
-  /// end_spread is their covariance). The end points lie on the AtGoal circle,
+  /// Each finished NOISE path's true end (its odometric end plus its error's
+  /// deviation from the mean error) minus their mean (equal weights;
+  /// end_spread is the odometric ends' covariance). The end points lie near the AtGoal circle,
   /// so the distance to the goal hardly varies over them: kept as points, the
   /// final position is a mixture that keeps that, where one Gaussian would
   /// smear the arc into a spread of the distance that is not there.
   std::vector<Eigen::Vector2d> end_offsets;
+  /// The true ends' spread that end_offsets do not show (a redrawn NOISE's
+  /// many paths are averaged into `directions` slabs).
+  Eigen::Matrix2d end_offsets_within = Eigen::Matrix2d::Zero();
   ErrorState error;                   ///< the true pose's error at the end
+  /// The paths' own errors at the end (their residuals after the regression
+  /// above), kept apart as a mixture (engine/error_mixture.hpp); `error.cov`
+  /// includes their spread. Empty for states that do not move.
+  ErrorMixture error_paths;
   std::vector<PathSample> path;       ///< every second, for separation (safety) criteria
   std::size_t cycles_simulated = 0;   ///< work done, for budgets and benchmarks
   /// Pose versus time per NOISE path, for a motion state a message can

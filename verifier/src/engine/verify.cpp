@@ -71,8 +71,9 @@ double expected_distance(const SystemOutcome& o, std::size_t i, const Eigen::Vec
     if (r.final_components.empty()) {
       e = expected_distance(r.final_position, goal);
     } else {
-      for (const Gaussian2& g : r.final_components) e += expected_distance(g, goal);
-      e /= static_cast<double>(r.final_components.size());
+      for (std::size_t k = 0; k < r.final_components.size(); ++k) {
+        e += component_weight(r, k) * expected_distance(r.final_components[k], goal);
+      }
     }
     sum += b.weight * e;
     w += b.weight;

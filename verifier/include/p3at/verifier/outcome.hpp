@@ -18,11 +18,15 @@ struct RobotOutcome {
   Mixture1 finish_time_s;
   /// Its true final position (moment-matched when final_components is not empty).
   Gaussian2 final_position;
-  /// The true final position as an equal-weight mixture, when the robot's
-  /// last GoToGuarded left one end point per NOISE direction (empty: use
-  /// final_position). Radius criteria use it: the end points lie on an arc
-  /// of the AtGoal circle, which one Gaussian cannot represent.
+  /// The true final position as a mixture, when the robot's last GoToGuarded
+  /// left one end point per NOISE direction or its error differs between
+  /// NOISE paths (empty: use final_position). Radius criteria use it: the end
+  /// points lie on an arc of the AtGoal circle, and a robot that turned
+  /// around one way or the other ends on one side or the other, which one
+  /// Gaussian cannot represent.
   std::vector<Gaussian2> final_components;
+  /// The components' weights (summing to 1); empty: equal weights.
+  std::vector<double> final_weights;
   /// Where its odometry says it is at the end (the mean the executive believes).
   Eigen::Vector2d believed_position = Eigen::Vector2d::Zero();
   /// The names of the FSA states it went through, in order (its trace).
@@ -30,13 +34,19 @@ struct RobotOutcome {
   bool finished = true;   ///< false if it never reached a final state in this branch (blocked, looped)
 };
 
+/// Weight of final component k.
+inline double component_weight(const RobotOutcome& r, std::size_t k) {
+  return r.final_weights.size() == r.final_components.size() ? r.final_weights[k]
+                                                              : 1.0 / static_cast<double>(r.final_components.size());
+}
+
 /// P(|final position - centre| < radius): over final_components when there
 /// are any, else with final_position.
 inline double final_within(const RobotOutcome& r, const Eigen::Vector2d& centre, double radius) {
   if (r.final_components.empty()) return probability_within(r.final_position, centre, radius);
   double sum = 0.0;
-  for (const Gaussian2& g : r.final_components) sum += probability_within(g, centre, radius);
-  return sum / static_cast<double>(r.final_components.size());
+  for (std::size_t k = 0; k < r.final_components.size(); ++k) sum += component_weight(r, k) * probability_within(r.final_components[k], centre, radius);
+  return sum;
 }
 
 /// A sample of two robots' relative true position at some moment, for safety
