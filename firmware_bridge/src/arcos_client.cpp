@@ -376,8 +376,10 @@ Status ArcosClient::motion_refused() const {
 }
 
 bool ArcosClient::motion_allowed(const char* what) {
+  if (stream_ && opened_ && state_.link == hal::LinkState::ok && !estop_latched_ && motors_off_why_.empty()) {
+    return true;
+  }
   const std::string latch = motion_latch_reason();
-  if (stream_ && opened_ && state_.link == hal::LinkState::ok && latch.empty()) return true;
   ++stats_.refused_motion;
   log::debug(config_.log_name, std::string("event=motion-refused request=") + what +
                                    " link=" + hal::to_string(state_.link) + (latch.empty() ? "" : " latch=\"" + latch + "\""));
