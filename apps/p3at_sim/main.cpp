@@ -50,6 +50,7 @@ struct Options {
   int watchdog_ms = 2000;
   int drop_opens = 0;    // fault injection: OPENs each robot ignores at first
   int drop_enables = 0;  // fault injection: ENABLE 1s each robot ignores at first
+  int drop_disables = 0; // fault injection: ENABLE 0s each robot ignores at first
 };
 
 constexpr int kDefaultFirstPort = 8101;
@@ -98,7 +99,7 @@ int run(const Options& opt) {
     listeners.push_back(std::move(listener).value());
     firmware.push_back(std::make_unique<p3at::sim::FirmwareEmulator>(world, i, wall, log_line));
     firmware.back()->set_watchdog_ms(opt.watchdog_ms);
-    firmware.back()->drop_first_commands(opt.drop_opens, opt.drop_enables);
+    firmware.back()->drop_first_commands(opt.drop_opens, opt.drop_enables, opt.drop_disables);
   }
   log_line("start robots=" + std::to_string(world.robot_count()) + " speedup=" + std::to_string(opt.speedup) +
            " seed=" + std::to_string(seed) + " watchdog_ms=" + std::to_string(opt.watchdog_ms) + " world=" + (opt.world_file.empty() ? "(default)" : opt.world_file));
@@ -178,7 +179,11 @@ int main(int argc, char** argv) {
                  "(tests the client's resend; default 0)")
       ->check(CLI::Range(0, 1000));
   app.add_option("--drop-enable", opt.drop_enables,
-                 "fault injection: each robot ignores the first N ENABLE 1 commands (default 0)")
+                 "fault injection: each robot ignores the first N ENABLE 1 commands, sent while connecting "
+                 "or later (default 0)")
+      ->check(CLI::Range(0, 1000));
+  app.add_option("--drop-disable", opt.drop_disables,
+                 "fault injection: each robot ignores the first N ENABLE 0 commands (default 0)")
       ->check(CLI::Range(0, 1000));
   try {
     app.parse(argc, argv);

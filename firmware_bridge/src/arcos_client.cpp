@@ -133,8 +133,9 @@ Status ArcosClient::handshake() {
   }
 
   if (config_.enable_motors) {
-    if (auto st = enable_until_confirmed(); !st) return st;
+    if (auto st = switch_motors_until_confirmed(true); !st) return st;
     estop_latched_ = false;
+    motors_off_why_.clear();
   }
   state_.link = hal::LinkState::ok;
   state_.why_stopped.clear();
@@ -163,34 +164,41 @@ Status ArcosClient::open_until_sips() {
                         " OPENs, " + std::to_string(config_.open_resend_ms) + " ms apart: OPEN or the SIPs lost)");
 }
 
-Status ArcosClient::enable_until_confirmed() {
+Status ArcosClient::switch_motors_until_confirmed(bool on) {
   const std::int64_t sip_period_limit_us = std::int64_t{config_.link_loss_ms} * 1000;
+  const std::string command = on ? "ENABLE" : "ENABLE 0";
   for (int attempt = 1; attempt <= config_.enable_attempts; ++attempt) {
     if (attempt > 1) {
-      ++stats_.enable_resends;
-      log::warn(config_.log_name, "event=enable-resend attempt=" + std::to_string(attempt) + "/" +
-                                      std::to_string(config_.enable_attempts) + " why=\"" +
-                                      std::to_string(config_.enable_resend_sips) +
-                                      " SIPs after ENABLE show the motors off\"");
+      ++(on ? stats_.enable_resends : stats_.disable_resends);
+      log::warn(config_.log_name, std::string("event=") + (on ? "enable" : "disable") + "-resend attempt=" +
+                                      std::to_string(attempt) + "/" + std::to_string(config_.enable_attempts) +
+                                      " why=\"" + std::to_string(config_.enable_resend_sips) + " SIPs after " +
+                                      command + " show the motors " + (on ? "off" : "on") + "\"");
     }
-    if (auto st = send(arcos::encode_command(arcos::Command::enable, 1)); !st) return st;
-    // Judge by SIPs that arrive after the ENABLE, never by an earlier one.
+    if (auto st = send(arcos::encode_command(arcos::Command::enable, on ? 1 : 0)); !st) return st;
+    // Judge by SIPs that arrive after the command, never by an earlier one.
     const std::uint64_t sips_at_send = stats_.sips;
     std::int64_t sip_deadline = clock_.now_us() + sip_period_limit_us;
     while (stats_.sips - sips_at_send < static_cast<std::uint64_t>(config_.enable_resend_sips)) {
       const std::uint64_t before = stats_.sips;
       if (auto st = read_and_dispatch(ms_between(clock_.now_us(), sip_deadline)); !st) return st;
       if (stats_.sips != before) {
-        if (state_.motors_enabled) return {};
+        if (state_.motors_enabled == on) return {};
         sip_deadline = clock_.now_us() + sip_period_limit_us;
       } else if (clock_.now_us() >= sip_deadline) {
-        return make_error(Error::Code::timeout, stream_->describe() + ": SIPs stopped while enabling the motors");
+        return make_error(Error::Code::timeout, stream_->describe() + ": SIPs stopped while " +
+                                                    (on ? "enabling" : "disabling") + " the motors");
       }
     }
   }
+  const std::string tries = std::to_string(config_.enable_attempts) + " " + command + " commands, " +
+                            std::to_string(config_.enable_resend_sips) + " SIPs apart";
+  if (!on) {
+    return make_error(Error::Code::protocol,
+                      stream_->describe() + ": motors stayed ON after " + tries + " (DISABLE lost? the robot can drive)");
+  }
   return make_error(Error::Code::protocol,
-                    stream_->describe() + ": motors stayed off after " + std::to_string(config_.enable_attempts) +
-                        " ENABLE commands, " + std::to_string(config_.enable_resend_sips) + " SIPs apart" +
+                    stream_->describe() + ": motors stayed off after " + tries +
                         (state_.estop_pressed ? " (the robot reports its e-stop pressed)" : " (ENABLE lost?)"));
 }
 
@@ -355,19 +363,31 @@ Status ArcosClient::send(const arcos::Frame& frame) {
   return {};
 }
 
+std::string ArcosClient::motion_latch_reason() const {
+  if (estop_latched_ && !motors_off_why_.empty()) return "emergency stop latched, " + motors_off_why_;
+  if (estop_latched_) return "emergency stop latched";
+  return motors_off_why_;
+}
+
+Status ArcosClient::motion_refused() const {
+  const std::string latch = motion_latch_reason();
+  return make_error(Error::Code::state,
+                    std::string("motion refused: link ") + hal::to_string(state_.link) + (latch.empty() ? "" : ", " + latch));
+}
+
 bool ArcosClient::motion_allowed(const char* what) {
-  if (stream_ && opened_ && state_.link == hal::LinkState::ok && !estop_latched_) return true;
+  if (stream_ && opened_ && state_.link == hal::LinkState::ok && !estop_latched_ && motors_off_why_.empty()) {
+    return true;
+  }
+  const std::string latch = motion_latch_reason();
   ++stats_.refused_motion;
   log::debug(config_.log_name, std::string("event=motion-refused request=") + what +
-                                   " link=" + hal::to_string(state_.link) + (estop_latched_ ? " estop=latched" : ""));
+                                   " link=" + hal::to_string(state_.link) + (latch.empty() ? "" : " latch=\"" + latch + "\""));
   return false;
 }
 
 Status ArcosClient::set_velocity(double trans_mps, double rot_radps) {
-  if (!motion_allowed("velocity")) {
-    return make_error(Error::Code::state, std::string("motion refused: link ") + hal::to_string(state_.link) +
-                                              (estop_latched_ ? ", emergency stop latched" : ""));
-  }
+  if (!motion_allowed("velocity")) return motion_refused();
   sips_at_motion_request_ = stats_.sips;
   const int vel = round_to_int(trans_mps * 1000.0);
   const int rvel = round_to_int(rot_radps * 180.0 / kPi);
@@ -408,22 +428,50 @@ Status ArcosClient::emergency_stop() {
 }
 
 Status ArcosClient::set_heading(int heading_deg) {
-  if (!motion_allowed("heading")) return make_error(Error::Code::state, "motion refused: link not ok");
+  if (!motion_allowed("heading")) return motion_refused();
   motion_active_ = false;
   return send(arcos::encode_command(arcos::Command::head, heading_deg));
 }
 
 Status ArcosClient::move(int distance_mm) {
-  if (!motion_allowed("move")) return make_error(Error::Code::state, "motion refused: link not ok");
+  if (!motion_allowed("move")) return motion_refused();
   motion_active_ = false;
   return send(arcos::encode_command(arcos::Command::move, distance_mm));
 }
 
 Status ArcosClient::enable_motors(bool enable) {
   if (!stream_ || !opened_) return make_error(Error::Code::state, "not connected");
-  if (auto st = send(arcos::encode_command(arcos::Command::enable, enable ? 1 : 0)); !st) return st;
-  if (enable) estop_latched_ = false;
-  return {};
+  if (!enable) {
+    // Motors going off: no motion from now on, and none repeated by the keep-alive.
+    motion_active_ = false;
+    vel_mm_s_ = 0;
+    rvel_deg_s_ = 0;
+    motors_off_why_ = "motors disabled (enable_motors(false))";
+  }
+  // The connect-time confirmation, reused: a lost ENABLE after connecting
+  // would otherwise leave the motors off while every command "succeeds", and a
+  // lost ENABLE 0 would leave a robot that was told to stop able to drive.
+  const Status st = switch_motors_until_confirmed(enable);
+  if (st) {
+    if (enable) {
+      estop_latched_ = false;
+      motors_off_why_.clear();
+    }
+    log::info(config_.log_name, enable ? "event=motors-enabled" : "event=motors-disabled");
+    return {};
+  }
+  ++stats_.motor_switch_failures;
+  if (enable) {
+    motors_off_why_ = "motors not enabled: " + st.error().message;
+    log::error(config_.log_name, "event=enable-failed why=\"" + st.error().message + "\"");
+    return st;
+  }
+  // Still on after every ENABLE 0: say so loudly, and ask the firmware to halt
+  // the wheels at least (ESTOP), in case that packet gets through.
+  const Status estop = send(arcos::encode_command(arcos::Command::estop, 1));
+  log::error(config_.log_name, "event=disable-failed why=\"" + st.error().message +
+                                   "\" motors=maybe-on estop_sent=" + (estop ? "yes" : "no"));
+  return st;
 }
 
 int ArcosClient::ms_until_keepalive() const {

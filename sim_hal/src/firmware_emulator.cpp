@@ -198,13 +198,16 @@ bool FirmwareEmulator::injected_drop(const arcos::Packet& packet) {
   // Command 1 is OPEN once SYNC2 has been answered (before that it is SYNC1).
   const bool is_open = packet.id == static_cast<std::uint8_t>(Command::open) &&
                        (phase_ == Phase::sync2 || phase_ == Phase::open);
-  const bool is_enable_on = phase_ == Phase::open && packet.id == static_cast<std::uint8_t>(Command::enable) &&
-                            arcos::decode_command(packet).value != 0;
-  int* left = is_open ? &opens_to_drop_ : is_enable_on ? &enables_to_drop_ : nullptr;
+  // Only an ENABLE with an integer argument switches the motors (handle_command).
+  const arcos::DecodedCommand cmd = arcos::decode_command(packet);
+  const bool is_enable = phase_ == Phase::open && packet.id == static_cast<std::uint8_t>(Command::enable) &&
+                         cmd.kind == arcos::DecodedCommand::ArgKind::integer;
+  const bool is_enable_on = is_enable && cmd.value != 0;
+  int* left = is_open ? &opens_to_drop_ : is_enable_on ? &enables_to_drop_ : is_enable ? &disables_to_drop_ : nullptr;
   if (left == nullptr || *left == 0) return false;
   --*left;
   ++stats_.injected_drops;
-  log(std::string("fault robot=") + robot().name() + " dropped=" + (is_open ? "OPEN" : "ENABLE") +
+  log(std::string("fault robot=") + robot().name() + " dropped=" + (is_open ? "OPEN" : is_enable_on ? "ENABLE" : "DISABLE") +
       " left=" + std::to_string(*left));
   return true;
 }

@@ -336,3 +336,57 @@ TEST_CASE("p3at_sim never honouring OPEN: the bridge gives up after 5 OPENs with
   REQUIRE(sim.process.wait_exit(5.0) == 0);
   CHECK(count_of(sim.process.log(), "dropped=OPEN") == 5);
 }
+
+// enable_motors() after connecting (re-enabling after a safety stop) against the
+// real simulator losing the packets: the client resends and confirms from the
+// SIPs. About 3 s of wall time: ~0.4 s per lost command (three 100 ms SIP
+// cycles, then the resend and the SIP confirming it), the rest connecting and driving.
+TEST_CASE("p3at_sim loses the ENABLE and the ENABLE 0 sent after connecting: the bridge resends each, the robot drives, then stops") {
+  // p3at_sim drops the first N ENABLE 1 (ENABLE 0) it receives, whenever sent.
+  test::SimProcess sim({"--drop-enable", "1", "--drop-disable", "1"});
+  REQUIRE(sim.ready());
+  hal::SteadyClock clock;
+  bridge::ClientConfig config;
+  config.log_name = "sitl-bridge";
+  config.enable_motors = false;  // no ENABLE while connecting: the first one the simulator sees comes after
+  bridge::ArcosClient client([url = sim.url()] { return hal::open_byte_stream(url); }, clock, config);
+  REQUIRE(client.connect().ok());
+  cycle_for(client, 0.3);
+  REQUIRE_FALSE(client.state().motors_enabled);
+
+  auto start = std::chrono::steady_clock::now();
+  REQUIRE(client.enable_motors(true).ok());
+  const double enable_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  MESSAGE("enable_motors(true) with the first ENABLE lost returned after " << enable_s << " s");
+  CHECK(client.state().motors_enabled);
+  // At least the lost one; one more only if the machine delays a SIP past the resend.
+  CHECK(client.stats().enable_resends >= 1);
+  CHECK(client.stats().enable_resends <= 2);
+  CHECK(enable_s >= 0.2);  // a resend needs three SIPs (100 ms apart) showing the motors off
+  CHECK(enable_s < 1.6);
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (client.state().trans_vel_mps < 0.2 && std::chrono::steady_clock::now() < give_up) {
+    REQUIRE(client.set_velocity(0.3, 0.0).ok());
+    (void)client.wait_for_update(200);
+  }
+  CHECK(client.state().trans_vel_mps >= 0.2);
+
+  start = std::chrono::steady_clock::now();
+  REQUIRE(client.enable_motors(false).ok());
+  const double disable_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  MESSAGE("enable_motors(false) with the first ENABLE 0 lost returned after " << disable_s << " s");
+  CHECK_FALSE(client.state().motors_enabled);
+  CHECK(client.stats().disable_resends >= 1);
+  CHECK(client.stats().disable_resends <= 2);
+  CHECK(client.stats().motor_switch_failures == 0);
+  CHECK_FALSE(client.set_velocity(0.3, 0.0).ok());  // refused: the motors are off
+  cycle_for(client, 0.3);
+  CHECK(std::fabs(client.state().trans_vel_mps) < 0.01);
+  REQUIRE(client.disconnect().ok());
+  sim.process.signal(SIGTERM);
+  REQUIRE(sim.process.wait_exit(5.0) == 0);
+  const std::string log = sim.process.log();
+  CHECK(count_of(log, "fault robot=robot1 dropped=ENABLE") == 1);
+  CHECK(count_of(log, "fault robot=robot1 dropped=DISABLE") == 1);
+  CHECK(log.find("injected_drops=2") != std::string::npos);
+}

@@ -66,7 +66,11 @@ Status GuardedDriveBase::rearm() {
   check();
   if (auto st = hub_.rearm(clock_.now_us()); !st) return st;
   if (reenable_) {
-    if (auto st = reenable_(); !st) return st;
+    // The latch is armed but the motors are not on (ArcosClient: ENABLE lost five
+    // times, or the robot's e-stop pressed): the inner base keeps refusing motion.
+    if (auto st = reenable_(); !st) {
+      return make_error(st.error().code, "motors not re-enabled: " + st.error().message);
+    }
   }
   check();
   if (config_.log) std::fprintf(stderr, "[%s] event=re-armed\n", config_.log_name.c_str());

@@ -239,7 +239,8 @@ int run_mission(const MissionRunOptions& opt, std::atomic<bool>& g_stop, const s
       // Motion only once the safety node reports clear and the latch is armed.
       for (int i = 0; i < 20 && !guarded->verdict().clear; ++i) (void)guarded->wait_for_update(200);
       if (const auto st = guarded->rearm(); !st) {
-        exec->abort("safety node not clear: " + st.error().message);
+        // The safety node not clear ("cannot re-arm: …"), or the motors not enabled.
+        exec->abort("cannot arm the robot: " + st.error().message);
         print_summary(*exec, own.p_joint, monitor);
         (void)robot.disconnect();
         return kExitAborted;

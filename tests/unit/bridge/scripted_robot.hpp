@@ -38,6 +38,7 @@ class ScriptedRobot {
   bool sips_paused = false;          // opened, but SIPs stop (link loss)
   int opens_to_ignore = 0;           // lose this many OPENs (a lossy line)
   int enables_to_ignore = 0;         // lose this many ENABLE 1s
+  int disables_to_ignore = 0;        // lose this many ENABLE 0s
   bool estop_pressed = false;        // the e-stop button is in: ENABLE has no effect, SIPs say so
   std::uint16_t start_x = 0x7F00;    // near the 15-bit wrap
   std::uint16_t start_y = 100;
@@ -171,6 +172,8 @@ class ScriptedRobot {
       vel_mm_s = rvel_deg_s = 0;
     } else if (is(Command::enable) && cmd.value != 0 && enables_to_ignore > 0) {
       --enables_to_ignore;
+    } else if (is(Command::enable) && cmd.value == 0 && disables_to_ignore > 0) {
+      --disables_to_ignore;
     } else if (is(Command::enable)) {
       enabled = cmd.value != 0 && !estop_pressed;
     } else if (is(Command::vel)) {

@@ -77,6 +77,20 @@ std::vector<std::int64_t> enable_on_times(const test::ScriptedRobot& robot) {
   return out;
 }
 
+// The times at which the robot received ENABLE `value` (1 or 0), from its `from`th command on.
+std::vector<std::int64_t> enable_times(const test::ScriptedRobot& robot, int value, std::size_t from) {
+  std::vector<std::int64_t> out;
+  for (std::size_t i = from; i < robot.received.size(); ++i) {
+    const auto& c = robot.received[i];
+    if (c.number == num(Command::enable) && (c.value != 0) == (value != 0)) out.push_back(c.at_us);
+  }
+  return out;
+}
+
+double seconds_since(const test::FakeClock& clock, std::int64_t start_us) {
+  return static_cast<double>(clock.now_us() - start_us) / 1e6;
+}
+
 }  // namespace
 
 TEST_CASE("handshake: SYNC0/1/2, OPEN, CONFIG, ENABLE against a reference robot") {
@@ -438,4 +452,127 @@ TEST_CASE("garbage in the stream is counted and survived") {
   CHECK(rig.client->stats().sips >= sips_before + 8);
   CHECK(rig.client->decoder_stats().errors() >= 1);
   CHECK(rig.client->state().link == hal::LinkState::ok);
+}
+
+// enable_motors() after connecting: confirmed and resent like the connect-time
+// ENABLE (docs/hal.md, "Handshake resends").
+TEST_CASE("after connecting, a lost ENABLE is resent when three SIPs show the motors off, and confirmed") {
+  Rig rig;
+  REQUIRE(rig.client->connect().ok());
+  rig.run_for(0.3);
+  REQUIRE(rig.client->emergency_stop().ok());  // a safety stop: ESTOP, ENABLE 0
+  rig.run_for(0.3);
+  REQUIRE_FALSE(rig.robot.enabled);
+  rig.robot.enables_to_ignore = 1;  // the re-enable is lost on the line
+  const std::size_t from = rig.robot.received.size();
+  const std::int64_t start = rig.clock.now_us();
+  REQUIRE(rig.client->enable_motors(true).ok());
+  // Confirmed before it returned: the robot's motors are on and a SIP said so.
+  CHECK(rig.robot.enabled);
+  CHECK(rig.client->state().motors_enabled);
+  const auto enables = enable_times(rig.robot, 1, from);
+  REQUIRE(enables.size() == 2);
+  CHECK(enables[1] - enables[0] >= 250'000);  // three SIP cycles of 100 ms
+  CHECK(enables[1] - enables[0] <= 400'000);
+  CHECK(seconds_since(rig.clock, start) <= 0.6);
+  CHECK(rig.client->stats().enable_resends == 1);
+  CHECK(rig.client->stats().motor_switch_failures == 0);
+  REQUIRE(rig.client->set_velocity(0.2, 0.0).ok());
+  rig.run_for(0.5);
+  CHECK(rig.client->state().trans_vel_mps == doctest::Approx(0.2));
+}
+
+TEST_CASE("after connecting, an ENABLE never honoured: five ENABLEs, an error the caller sees, and motion refused") {
+  Rig rig;
+  REQUIRE(rig.client->connect().ok());
+  REQUIRE(rig.client->emergency_stop().ok());
+  rig.run_for(0.3);
+  rig.robot.enables_to_ignore = 1000;
+  const std::size_t from = rig.robot.received.size();
+  const std::int64_t start = rig.clock.now_us();
+  const Status st = rig.client->enable_motors(true);
+  REQUIRE_FALSE(st.ok());
+  CHECK(st.error().message.find("motors stayed off after 5 ENABLE commands, 3 SIPs apart") != std::string::npos);
+  CHECK(st.error().message.find("(ENABLE lost?)") != std::string::npos);
+  CHECK(enable_times(rig.robot, 1, from).size() == 5);
+  CHECK(seconds_since(rig.clock, start) >= 1.4);
+  CHECK(seconds_since(rig.clock, start) <= 1.8);
+  CHECK(rig.client->stats().enable_resends == 4);
+  CHECK(rig.client->stats().motor_switch_failures == 1);
+  // The link itself is fine; the motors are not, so nothing may look like driving.
+  CHECK(rig.client->state().link == hal::LinkState::ok);
+  const std::size_t before_motion = rig.robot.received.size();
+  const Status refused = rig.client->set_velocity(0.3, 0.0);
+  REQUIRE_FALSE(refused.ok());
+  CHECK(refused.error().code == Error::Code::state);
+  CHECK(refused.error().message.find("motors not enabled") != std::string::npos);
+  CHECK(refused.error().message.find("ENABLE lost?") != std::string::npos);
+  CHECK(rig.robot.received.size() == before_motion);  // no VEL went out
+  // Later an ENABLE gets through: the refusal lifts.
+  rig.robot.enables_to_ignore = 0;
+  REQUIRE(rig.client->enable_motors(true).ok());
+  REQUIRE(rig.client->set_velocity(0.3, 0.0).ok());
+  rig.run_for(0.5);
+  CHECK(rig.client->state().trans_vel_mps == doctest::Approx(0.3));
+
+  // The robot's e-stop button pressed after connecting: the error says so.
+  Rig pressed;
+  REQUIRE(pressed.client->connect().ok());
+  pressed.robot.estop_pressed = true;
+  REQUIRE(pressed.client->emergency_stop().ok());
+  const Status held = pressed.client->enable_motors(true);
+  REQUIRE_FALSE(held.ok());
+  CHECK(held.error().message.find("(the robot reports its e-stop pressed)") != std::string::npos);
+  CHECK_FALSE(pressed.client->set_velocity(0.3, 0.0).ok());
+}
+
+TEST_CASE("a lost DISABLE is resent while SIPs show the motors on; motion is refused from the start") {
+  Rig rig;
+  REQUIRE(rig.client->connect().ok());
+  REQUIRE(rig.client->set_velocity(0.3, 0.0).ok());
+  rig.run_for(0.5);
+  rig.robot.disables_to_ignore = 2;
+  const std::size_t from = rig.robot.received.size();
+  REQUIRE(rig.client->enable_motors(false).ok());
+  CHECK_FALSE(rig.robot.enabled);
+  CHECK_FALSE(rig.client->state().motors_enabled);
+  const auto disables = enable_times(rig.robot, 0, from);
+  REQUIRE(disables.size() == 3);
+  CHECK(disables[1] - disables[0] >= 250'000);
+  CHECK(disables[2] - disables[1] >= 250'000);
+  CHECK(rig.client->stats().disable_resends == 2);
+  CHECK(rig.client->stats().motor_switch_failures == 0);
+  const Status refused = rig.client->set_velocity(0.3, 0.0);
+  REQUIRE_FALSE(refused.ok());
+  CHECK(refused.error().message.find("motors disabled") != std::string::npos);
+  // The keep-alive does not repeat the velocity that was in force.
+  rig.run_for(1.0);
+  for (std::size_t i = from; i < rig.robot.received.size(); ++i) {
+    CHECK_FALSE((rig.robot.received[i].number == num(Command::vel) && rig.robot.received[i].value != 0));
+  }
+  REQUIRE(rig.client->enable_motors(true).ok());
+  CHECK(rig.client->set_velocity(0.3, 0.0).ok());
+}
+
+TEST_CASE("a DISABLE never honoured: five ENABLE 0s, then ESTOP and an error the caller sees") {
+  Rig rig;
+  REQUIRE(rig.client->connect().ok());
+  REQUIRE(rig.client->set_velocity(0.3, 0.0).ok());
+  rig.run_for(0.5);
+  rig.robot.disables_to_ignore = 1000;
+  const std::size_t from = rig.robot.received.size();
+  const Status st = rig.client->enable_motors(false);
+  REQUIRE_FALSE(st.ok());
+  CHECK(st.error().message.find("motors stayed ON after 5 ENABLE 0 commands, 3 SIPs apart") != std::string::npos);
+  CHECK(st.error().message.find("DISABLE lost?") != std::string::npos);
+  CHECK(enable_times(rig.robot, 0, from).size() == 5);
+  CHECK(rig.client->stats().disable_resends == 4);
+  CHECK(rig.client->stats().motor_switch_failures == 1);
+  // The last resort went out after the fifth ENABLE 0, and the wheels halted.
+  rig.robot.run();
+  REQUIRE_FALSE(rig.robot.received.empty());
+  CHECK(rig.robot.received.back().number == num(Command::estop));
+  CHECK(rig.robot.enabled);  // still on: the caller was told
+  CHECK(rig.robot.vel_mm_s == 0);
+  CHECK_FALSE(rig.client->set_velocity(0.3, 0.0).ok());
 }

@@ -166,3 +166,25 @@ TEST_CASE("the guarded state's heading is gyro-aided") {
   CHECK(std::fabs(odom - truth) > 0.4);
   CHECK(std::fabs(aided - truth) < 0.03);
 }
+
+TEST_CASE("re-arming when the motors cannot be re-enabled fails, naming the motors, and motion stays refused") {
+  Rig rig;
+  rig.cycles(5);
+  REQUIRE(rig.guarded.rearm());
+  rig.nodes.safety().set_bumpers(0x01);
+  rig.cycles(1);
+  REQUIRE(rig.base.estop_latched());
+  rig.nodes.safety().set_bumpers(0);
+  rig.cycles(1);
+  // What ArcosClient::enable_motors(true) returns after five lost ENABLEs.
+  rig.base.enable_failure = "tcp://robot: motors stayed off after 5 ENABLE commands, 3 SIPs apart (ENABLE lost?)";
+  const auto failed = rig.guarded.rearm();
+  REQUIRE_FALSE(failed);
+  CHECK(failed.error().message.find("motors not re-enabled: ") == 0);
+  CHECK(failed.error().message.find("ENABLE lost?") != std::string::npos);
+  CHECK_FALSE(rig.guarded.set_velocity(0.1, 0.0));
+  CHECK(rig.base.trans_mps() == 0.0);
+  rig.base.enable_failure.clear();
+  REQUIRE(rig.guarded.rearm());
+  REQUIRE(rig.guarded.set_velocity(0.1, 0.0));
+}

@@ -51,6 +51,8 @@ struct ClientConfig {
   int open_attempts = 5;             ///< …at most this many OPENs in all (1.5 s), then give up
   /// ENABLE 1 again when this many SIPs after it still show the motors off (a
   /// SIP already in flight when ENABLE arrives may predate it: one is normal)…
+  /// The same bounds confirm enable_motors(true) and enable_motors(false)
+  /// (ENABLE 0: resent while the SIPs still show the motors on) after connecting.
   int enable_resend_sips = 3;
   int enable_attempts = 5;           ///< …at most this many ENABLEs in all (15 SIPs, 1.5 s), then give up
   int close_grace_ms = 100;          ///< between ENABLE 0 and CLOSE on disconnect
@@ -80,6 +82,10 @@ struct ClientStats {
   std::uint64_t handshake_failures = 0;
   std::uint64_t open_resends = 0;     ///< OPENs sent again because no SIP followed
   std::uint64_t enable_resends = 0;   ///< ENABLE 1s sent again because SIPs showed the motors off
+  std::uint64_t disable_resends = 0;  ///< ENABLE 0s sent again because SIPs showed the motors on
+  /// enable_motors() calls that gave up with the motors not as asked (a give-up
+  /// while connecting counts in handshake_failures instead)
+  std::uint64_t motor_switch_failures = 0;
   std::uint64_t link_losses = 0;
   std::uint64_t reconnects = 0;       ///< completed handshakes after a link loss
   std::uint64_t refused_motion = 0;   ///< motion requests refused because the link was not ok
@@ -113,7 +119,15 @@ class ArcosClient final : public hal::DriveBase {
   Status set_heading(int heading_deg);
   /// MOVE: drive a relative distance (mm) under firmware control.
   Status move(int distance_mm);
-  /// ENABLE 1 / 0. Re-enabling clears a latched emergency stop.
+  /// ENABLE 1 / 0, confirmed from the SIPs' motor flag (FLAGS bit 0) and resent
+  /// like the connect-time ENABLE (docs/hal.md, "Handshake resends"): blocks
+  /// until a SIP after the command shows the motors as asked (normally one or
+  /// two SIP cycles), at most enable_attempts × enable_resend_sips SIPs (1.5 s).
+  /// enable_motors(true) clears a latched emergency stop once confirmed; when
+  /// it gives up (ENABLE lost, e-stop pressed) it returns the error and motion
+  /// stays refused until an enable succeeds. enable_motors(false) refuses
+  /// motion from the start; when the motors stay on it logs an ERROR, sends
+  /// ESTOP as a last resort and returns the error.
   Status enable_motors(bool enable);
 
   const RobotInfo& info() const { return info_; }
@@ -125,8 +139,13 @@ class ArcosClient final : public hal::DriveBase {
   Status sync_once();
   /// OPEN, resent until the first SIP arrives (at most open_attempts OPENs).
   Status open_until_sips();
-  /// ENABLE 1, resent until a SIP shows the motors on (at most enable_attempts).
-  Status enable_until_confirmed();
+  /// ENABLE `on`, resent until a SIP after it shows the motors on (resp. off),
+  /// at most enable_attempts; used while connecting and by enable_motors().
+  Status switch_motors_until_confirmed(bool on);
+  /// Why motion is refused although the link is ok; empty when it is not.
+  std::string motion_latch_reason() const;
+  /// The error a refused motion request returns: the link state and any latch.
+  Status motion_refused() const;
   /// Next packet with `id` (any packet when nullopt), handling SIPs on the way when sips_ok.
   Result<arcos::Packet> wait_for_packet(std::optional<std::uint8_t> id, std::int64_t deadline_us, bool sips_ok);
   Status read_and_dispatch(int timeout_ms);
@@ -155,10 +174,14 @@ class ArcosClient final : public hal::DriveBase {
   std::int64_t last_sip_us_ = 0;
   std::int64_t last_sent_us_ = 0;
   std::uint64_t sips_at_last_send_ = 0;
-  std::uint64_t sips_at_motion_request_ = 0;
-  std::uint64_t handshake_bytes_ = 0;  ///< bytes read during the current handshake  ///< stats_.sips at the latest set_velocity()
+  std::uint64_t sips_at_motion_request_ = 0;  ///< stats_.sips at the latest set_velocity()
+  std::uint64_t handshake_bytes_ = 0;  ///< bytes read during the current handshake
   std::int64_t last_reconnect_attempt_us_ = 0;
   bool estop_latched_ = false;
+  /// Set by enable_motors(false) and by a failed enable_motors(true): the
+  /// motors are (or may be) off, so motion is refused, saying this, until an
+  /// enable is confirmed. Empty = no such latch.
+  std::string motors_off_why_;
   bool ever_connected_ = false;
   bool opened_ = false;               // OPEN sent on the current stream
   bool motion_active_ = false;        // a non-zero VEL/RVEL is in force

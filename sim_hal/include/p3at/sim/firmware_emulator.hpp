@@ -55,11 +55,13 @@ class FirmwareEmulator {
   int watchdog_ms() const { return watchdog_ms_; }
 
   /// Fault injection for tests of the client's resends: ignore the first
-  /// `opens` OPEN and the first `enables` ENABLE 1 commands this robot receives
-  /// (over all connections), as if the line had lost them. Each is logged.
-  void drop_first_commands(int opens, int enables) {
+  /// `opens` OPEN, the first `enables` ENABLE 1 and the first `disables` ENABLE 0
+  /// commands this robot receives (over all connections, whether sent while
+  /// connecting or later), as if the line had lost them. Each is logged.
+  void drop_first_commands(int opens, int enables, int disables = 0) {
     opens_to_drop_ = opens > 0 ? opens : 0;
     enables_to_drop_ = enables > 0 ? enables : 0;
+    disables_to_drop_ = disables > 0 ? disables : 0;
   }
 
   /// Takes ownership of a newly accepted client. A current client is dropped first.
@@ -120,6 +122,7 @@ class FirmwareEmulator {
   bool was_halted_ = false;
   int opens_to_drop_ = 0;
   int enables_to_drop_ = 0;
+  int disables_to_drop_ = 0;
   FirmwareStats stats_{};
 };
 

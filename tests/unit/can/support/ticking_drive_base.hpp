@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "p3at/hal/clock.hpp"
@@ -53,11 +54,13 @@ class TickingDriveBase final : public hal::DriveBase {
     estop_times_us.push_back(clock_.now_us());
     return {};
   }
-  /// What ArcosClient::enable_motors(true) does: clears the latch.
+  /// What ArcosClient::enable_motors(true) does: clears the latch once the
+  /// motors are on; fails with `enable_failure` (the latch kept) when that is set.
   Status enable_motors() {
+    ++enable_calls;
+    if (!enable_failure.empty()) return make_error(Error::Code::protocol, enable_failure);
     estop_latched_ = false;
     state_.motors_enabled = true;
-    ++enable_calls;
     return {};
   }
 
@@ -86,6 +89,7 @@ class TickingDriveBase final : public hal::DriveBase {
   std::vector<std::int64_t> estop_times_us;
   int set_velocity_calls = 0;
   int enable_calls = 0;
+  std::string enable_failure;  ///< non-empty: enable_motors() fails with it (ENABLE lost, e-stop pressed)
 
  private:
   // Integrates the motion up to the clock's present (a real clock oversleeps).
