@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <optional>
 #include <type_traits>
@@ -60,35 +61,84 @@ std::size_t cycle_cap(const StateContext& ctx, std::size_t state, const BaseStat
   return std::max(kMinCycleCap, static_cast<std::size_t>(10.0 * nominal_s / ctx.model->kinematics.cycle_s));
 }
 
-/// The error at the end of a motion state: the paths' errors combined (their
-/// means' spread kept in full), and each path's deviation from the mean
-/// error as a component of `paths` (engine/error_mixture), reduced to
-/// kMaxErrorComponents.
+/// The error at the end of a motion state, carried forward from the MEAN
+/// odometric end pose. Much of the error is a function of the odometric pose
+/// itself (a rotation-scale error is (k - 1) times the net odometric turn; a
+/// distance-scale error grows with the odometric displacement), and the next
+/// state re-steers from wherever odometry says the robot is, which undoes it
+/// (a path that turned 5 degrees more turns 5 degrees less next). So the part
+/// of the paths' error spread that is explained by their differing end poses
+/// is not a spread the robot keeps: regress the paths' error means on their
+/// end poses (weighted least squares) and carry the residual spread, plus
+/// each path's own (within-path) covariance.
 ///
-/// An earlier version regressed the paths' error means on their odometric
-/// end poses and carried only the residual spread (the next state re-steers
-/// from wherever odometry says the robot is). Re-steering removes the
-/// odometric offset, not the error: a robot that turned around one way
-/// keeps the heading error of that turn. Measured on generated gen_1166 cut
-/// after its 7 states (`vipars validate`, 400 runs: the robot ends 0.482 m
-/// from its goal on average): 0.276 m predicted with the regression, 0.477 m
-/// without; a U-turn and 7 m (simulation 0.452 m): 0.377 and 0.455 m.
-ErrorState error_given_end(const std::vector<FinishedPath>& done, ErrorMixture* paths = nullptr) {
-  std::vector<ErrorState> errors;
-  std::vector<double> weights;
-  for (const FinishedPath& p : done) {
-    errors.push_back(p.walker.error);
-    weights.push_back(p.walker.weight);
-  }
-  const ErrorState out = combine(errors.data(), weights.data(), errors.size());
+/// Except for what re-steering never undoes: paths that turned around one way
+/// or the other (`turns`: whole turns between a path's continuous heading and
+/// the first path's) face the same way, but with heading errors of opposite
+/// sign that the rest of the mission turns into lateral errors of opposite
+/// sign. The regression is fitted within each such group (one slope, one
+/// intercept per group), so the groups' difference stays in the residual.
+/// The residuals are also returned as the components of `paths`
+/// (engine/error_mixture), reduced to kMaxErrorComponents: one Gaussian would
+/// put most of a two-sided error near zero. Measured on generated gen_1166
+/// (a U-turn at the start of an 8 m leg, rot_scale 1.02) cut after its 7
+/// states (`vipars validate`, 400 runs: the robot ends 0.482 m from its goal
+/// on average): 0.276 m predicted with one Gaussian and the regression over
+/// all paths (the U-turn's two groups ended on the two sides of the arc, so
+/// the end positions "explained" their errors), 0.477 m carrying everything.
+ErrorState error_given_end(const std::vector<FinishedPath>& done, const std::vector<long>& turns,
+                           ErrorMixture* paths = nullptr) {
+  ErrorState out;
   double total = 0.0;
-  for (const double w : weights) total += w;
-  if (paths != nullptr && total > 0.0) {
-    for (const FinishedPath& p : done) {
-      if (p.walker.weight > 0.0) paths->push_back({p.walker.weight / total, p.walker.error.mean - out.mean, Eigen::Matrix3d::Zero()});
-    }
-    reduce(*paths, kMaxErrorComponents);
+  for (const FinishedPath& p : done) total += p.walker.weight;
+  if (done.empty() || !(total > 0.0)) return out;
+  const auto pose = [](const FinishedPath& p) { return Eigen::Vector3d(p.walker.q.x_m, p.walker.q.y_m, p.walker.q.theta_rad); };
+  // Overall and per-group weighted means.
+  std::map<long, double> group_w;
+  std::map<long, Eigen::Vector3d> group_q, group_e;
+  Eigen::Vector3d q_mean = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < done.size(); ++i) {
+    const FinishedPath& p = done[i];
+    const double f = p.walker.weight / total;
+    out.mean += f * p.walker.error.mean;
+    q_mean += f * pose(p);
+    const long g = turns[i];
+    group_w[g] += f;
+    group_q.try_emplace(g, Eigen::Vector3d::Zero()).first->second += f * pose(p);
+    group_e.try_emplace(g, Eigen::Vector3d::Zero()).first->second += f * p.walker.error.mean;
   }
+  for (auto& [g, w] : group_w) {
+    if (w > 0.0) {
+      group_q[g] /= w;
+      group_e[g] /= w;
+    }
+  }
+  // Centred (within its group), weight-scaled regressors and responses; a
+  // small ridge keeps a degenerate spread (all paths alike, or a straight
+  // line of end points) well posed.
+  const auto rows = static_cast<Eigen::Index>(done.size());
+  Eigen::MatrixXd x(rows, 3), y(rows, 3);
+  for (Eigen::Index i = 0; i < rows; ++i) {
+    const FinishedPath& p = done[static_cast<std::size_t>(i)];
+    const long g = turns[static_cast<std::size_t>(i)];
+    const double s = std::sqrt(p.walker.weight / total);
+    x.row(i) = s * (pose(p) - group_q[g]).transpose();
+    y.row(i) = s * (p.walker.error.mean - group_e[g]).transpose();
+  }
+  const Eigen::Matrix3d xtx = x.transpose() * x + 1e-9 * Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d b = xtx.ldlt().solve(x.transpose() * y);  // y ≈ x b
+  for (Eigen::Index i = 0; i < rows; ++i) {
+    const FinishedPath& p = done[static_cast<std::size_t>(i)];
+    const long g = turns[static_cast<std::size_t>(i)];
+    // Within the group, what the pose does not explain; plus the group's own
+    // offset, less what its mean pose explains.
+    const Eigen::Vector3d r = (p.walker.error.mean - group_e[g]) - b.transpose() * (pose(p) - group_q[g]) +
+                              (group_e[g] - out.mean) - b.transpose() * (group_q[g] - q_mean);
+    const double f = p.walker.weight / total;
+    out.cov += f * (p.walker.error.cov + r * r.transpose());
+    if (paths != nullptr && f > 0.0) paths->push_back({f, r, Eigen::Matrix3d::Zero()});
+  }
+  if (paths != nullptr) reduce(*paths, kMaxErrorComponents);
   return out;
 }
 
@@ -373,11 +423,15 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   // Headings are continuous per path, but two paths that turned around in
   // opposite directions end a whole turn apart (+pi and -pi): averaged as
   // numbers they would face the other way. Bring every end heading within pi
-  // of the first finished path's.
+  // of the first finished path's, remembering the whole turns between them
+  // (error_given_end keeps those groups' errors apart).
+  std::vector<long> turns(ends->finished.size(), 0);
   for (std::size_t j = 1; j < ends->finished.size(); ++j) {
     const double ref = ends->finished[0].walker.q.theta_rad;
     double& theta = ends->finished[j].walker.q.theta_rad;
-    theta = ref + std::remainder(theta - ref, 2.0 * kPi);
+    const double wrapped = ref + std::remainder(theta - ref, 2.0 * kPi);
+    turns[j] = std::lround((theta - wrapped) / (2.0 * kPi));
+    theta = wrapped;
   }
   double finished = 0.0;
   for (const FinishedPath& p : ends->finished) {
@@ -405,7 +459,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   a.end.trans_mps /= finished;
   a.end.rot_radps /= finished;
   const Eigen::Vector2d mean_xy(a.end.x_m, a.end.y_m);
-  a.error = error_given_end(ends->finished, &a.error_paths);
+  a.error = error_given_end(ends->finished, turns, &a.error_paths);
   if (go) {
     a.sets_spread = true;
     for (const FinishedPath& p : ends->finished) {
