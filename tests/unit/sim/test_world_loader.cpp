@@ -5,6 +5,7 @@
 
 #include <doctest/doctest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "p3at/common/located_error.hpp"
@@ -252,6 +253,23 @@ TEST_CASE("the example worlds load") {
   p3at::sim::test::run_for(world, 3.0);
   CHECK(world.robot(1).true_pose().x_m > 7.0);
   CHECK_FALSE(world.robot(1).left_stall());
+}
+
+TEST_CASE("every world file shipped in the tree loads (examples, test data)") {
+  // The loader's typing rules are the shared reader's; no shipped world may fall foul of them.
+  std::size_t loaded = 0;
+  for (const char* folder : {"/examples", "/tests/data"}) {
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(std::string(P3AT_SOURCE_DIR) + folder)) {
+      const std::string path = entry.path().string();
+      const bool world = entry.path().filename() == "world.yaml" ||
+                         entry.path().parent_path().filename() == "worlds";
+      if (!entry.is_regular_file() || !world) continue;
+      CAPTURE(path);
+      CHECK_FALSE(load_world_file(path).robots.empty());
+      ++loaded;
+    }
+  }
+  CHECK(loaded >= 20);
 }
 
 TEST_CASE("the default world is one robot1 at the origin") {
