@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
+#include <string>
+
+#include "p3at/common/number_format.hpp"
+#include "p3at/common/text_columns.hpp"
 
 namespace p3at::crosscheck {
 namespace {
@@ -197,34 +200,30 @@ Json summary_json(const CampaignSummary& s, const Bounds& b) {
   return j;
 }
 
+// The lines below were printf'd into fixed buffers, which cut a long error
+// text; now built with the project's formatters (printf's conversions byte for
+// byte, see number_format.hpp and text_columns.hpp), they are never cut.
 std::string mission_line(const MissionResult& r, const Bounds& b) {
-  char buf[400];
-  if (!r.error.empty()) {
-    std::snprintf(buf, sizeof buf, "%-18s could not run: %s", r.name.c_str(), r.error.c_str());
-    return buf;
-  }
+  const std::string name = left_aligned(r.name, 18);
+  if (!r.error.empty()) return name + " could not run: " + r.error;
   const MissionScore& s = r.score;
   const char* verdict = s.within(b, false) ? "ok" : s.within(b, true) ? "ok within 1 %" : "FAIL";
-  std::snprintf(buf, sizeof buf,
-                "%-18s %zu robot%s  time %.3f / %.3f  radius %.3f / %.3f  joint %.3f / %.3f  over-confident GO %zu%s  %s",
-                r.name.c_str(), r.robots, r.robots == 1 ? " " : "s", s.time.strict, s.time.tolerant, s.radius.strict,
-                s.radius.tolerant, s.joint.strict, s.joint.tolerant, s.overconfident_go_cells,
-                r.evaluable ? "" : " (cannot evaluate)", verdict);
-  return buf;
+  const auto pair = [](const ErrorSummary& e) { return format_fixed(e.strict, 3) + " / " + format_fixed(e.tolerant, 3); };
+  return name + " " + std::to_string(r.robots) + " robot" + (r.robots == 1 ? " " : "s") + "  time " + pair(s.time) +
+         "  radius " + pair(s.radius) + "  joint " + pair(s.joint) + "  over-confident GO " +
+         std::to_string(s.overconfident_go_cells) + (r.evaluable ? "" : " (cannot evaluate)") + "  " + verdict;
 }
 
 std::string summary_text(const CampaignSummary& s, const Bounds& b) {
-  std::string out;
-  char buf[300];
-  std::snprintf(buf, sizeof buf, "missions %zu: scored %zu (of which verify cannot evaluate %zu), could not run %zu; %llu validation runs\n",
-                s.missions, s.scored, s.not_evaluable, s.could_not_run, static_cast<unsigned long long>(s.runs));
-  out += buf;
+  std::string out = "missions " + std::to_string(s.missions) + ": scored " + std::to_string(s.scored) +
+                    " (of which verify cannot evaluate " + std::to_string(s.not_evaluable) + "), could not run " +
+                    std::to_string(s.could_not_run) + "; " + std::to_string(s.runs) + " validation runs\n";
   out += "max |verify - validate|     worst    p50    p90    p95   within bound\n";
   const auto row = [&](const char* what, const MetricStats& m, double bound) {
     const double pct = m.missions ? 100.0 * static_cast<double>(m.within) / static_cast<double>(m.missions) : 0.0;
-    std::snprintf(buf, sizeof buf, "%-26s %6.3f %6.3f %6.3f %6.3f   %zu of %zu (%.0f %%) <= %.2f\n", what, m.worst, m.p50,
-                  m.p90, m.p95, m.within, m.missions, pct, bound);
-    out += buf;
+    out += left_aligned(what, 26) + " " + format_fixed(m.worst, 3, 6) + " " + format_fixed(m.p50, 3, 6) + " " +
+           format_fixed(m.p90, 3, 6) + " " + format_fixed(m.p95, 3, 6) + "   " + std::to_string(m.within) + " of " +
+           std::to_string(m.missions) + " (" + format_fixed(pct, 0) + " %) <= " + format_fixed(bound, 2) + "\n";
   };
   row("time curve, strict", s.time_strict, b.time);
   row("time curve, 1 % shift", s.time_tolerant, b.time);
@@ -233,15 +232,14 @@ std::string summary_text(const CampaignSummary& s, const Bounds& b) {
   row("joint surface, strict", s.joint_strict, b.joint);
   row("joint surface, 1 % shift", s.joint_tolerant, b.joint);
   const auto pct = [&s](std::size_t k) { return s.scored ? 100.0 * static_cast<double>(k) / static_cast<double>(s.scored) : 0.0; };
-  std::snprintf(buf, sizeof buf, "all three within %.2f/%.2f/%.2f: strict %zu of %zu (%.0f %%), with the 1 %% shift %zu (%.0f %%)\n",
-                b.time, b.radius, b.joint, s.all_within_strict, s.scored, pct(s.all_within_strict), s.all_within_tolerant,
-                pct(s.all_within_tolerant));
-  out += buf;
-  std::snprintf(buf, sizeof buf,
-                "over-confident GO cells (verify >= 0.8, validation's 95 %% interval below 0.78): %zu on %zu evaluable "
-                "missions; %zu more on missions verify cannot evaluate\n",
-                s.overconfident_cells, s.overconfident_missions, s.overconfident_cells_not_evaluable);
-  out += buf;
+  out += "all three within " + format_fixed(b.time, 2) + "/" + format_fixed(b.radius, 2) + "/" + format_fixed(b.joint, 2) +
+         ": strict " + std::to_string(s.all_within_strict) + " of " + std::to_string(s.scored) + " (" +
+         format_fixed(pct(s.all_within_strict), 0) + " %), with the 1 % shift " + std::to_string(s.all_within_tolerant) +
+         " (" + format_fixed(pct(s.all_within_tolerant), 0) + " %)\n";
+  out += "over-confident GO cells (verify >= 0.8, validation's 95 % interval below 0.78): " +
+         std::to_string(s.overconfident_cells) + " on " + std::to_string(s.overconfident_missions) +
+         " evaluable missions; " + std::to_string(s.overconfident_cells_not_evaluable) +
+         " more on missions verify cannot evaluate\n";
   return out;
 }
 

@@ -1,13 +1,15 @@
 // Generated missions on disk, and the coverage table over many of them.
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <stdexcept>
+#include <string>
 
 #include "gen_internal.hpp"
+#include "p3at/common/number_format.hpp"
+#include "p3at/common/text_columns.hpp"
 
 namespace p3at::mission_gen {
 
@@ -44,21 +46,17 @@ std::string coverage_table(const std::vector<Coverage>& missions) {
     min_rt = std::min(min_rt, c.min_random_trans);
     max_rt = std::max(max_rt, c.max_random_trans);
   }
+  // Built with the project's formatters (printf's conversions byte for byte),
+  // not into a fixed buffer, so no row is ever cut.
   std::string s;
-  char line[400];
-  const auto row = [&](const char* what, std::size_t k) {
-    std::snprintf(line, sizeof line, "%-52s %5zu of %zu\n", what, k, n);
-    s += line;
+  const auto row = [&](const std::string& what, std::size_t k) {
+    s += left_aligned(what, 52) + " " + right_aligned(std::to_string(k), 5) + " of " + std::to_string(n) + "\n";
   };
-  for (const auto& [robots, k] : team_sizes) {
-    const std::string what = std::to_string(robots) + (robots == 1 ? " robot" : " robots");
-    row(what.c_str(), k);
-  }
-  std::snprintf(line, sizeof line, "legs %.1f .. %.1f m, speeds %.2f .. %.2f m/s, dropoff %.2f .. %.2f m, noise gain <= %.3f\n",
-                min_leg, max_leg, min_v, max_v, min_drop, max_drop, max_gain);
-  s += line;
-  std::snprintf(line, sizeof line, "random odometry error per unit %.4f .. %.4f\n", min_rt, max_rt);
-  s += line;
+  for (const auto& [robots, k] : team_sizes) row(std::to_string(robots) + (robots == 1 ? " robot" : " robots"), k);
+  s += "legs " + format_fixed(min_leg, 1) + " .. " + format_fixed(max_leg, 1) + " m, speeds " + format_fixed(min_v, 2) +
+       " .. " + format_fixed(max_v, 2) + " m/s, dropoff " + format_fixed(min_drop, 2) + " .. " +
+       format_fixed(max_drop, 2) + " m, noise gain <= " + format_fixed(max_gain, 3) + "\n";
+  s += "random odometry error per unit " + format_fixed(min_rt, 4) + " .. " + format_fixed(max_rt, 4) + "\n";
   row("NOISE redrawn every cycle (persistence 1)", count([](const Coverage& c) { return c.noise_redrawn_every_cycle > 0; }));
   row("NOISE held for a whole leg", count([](const Coverage& c) { return c.noise_held_whole_leg > 0; }));
   row("Spin left by HasTurned", count([](const Coverage& c) { return c.spins > 0; }));

@@ -135,6 +135,15 @@ std::int64_t MapReader::integer_or(std::string_view key, std::int64_t lo, std::i
 
 std::string MapReader::string(std::string_view key) const { return scalar(key, "a string"); }
 
+bool MapReader::boolean(std::string_view key) const {
+  const Entry& e = entry(key);
+  if (e.value.IsScalar() && e.value.Tag() == "?") {
+    if (e.value.Scalar() == "true") return true;
+    if (e.value.Scalar() == "false") return false;
+  }
+  src_->fail(value_mark(key), "expected true or false for '" + label(key) + "', got " + describe(e.value));
+}
+
 YAML::Node MapReader::sequence(std::string_view key) const {
   const Entry& e = entry(key);
   if (!e.value.IsSequence()) {

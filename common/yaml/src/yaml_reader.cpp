@@ -39,6 +39,11 @@ bool Range::contains(double v) const {
 }
 
 std::string Range::describe(std::string_view what) const {
+  // A range open on one side ("> 0", as the world file's scales) names only its finite bound.
+  const bool no_lo = std::isinf(lo) && lo < 0.0;
+  const bool no_hi = std::isinf(hi) && hi > 0.0;
+  if (no_hi && !no_lo) return std::string(what) + (lo_open ? " > " : " >= ") + format_shortest(lo);
+  if (no_lo && !no_hi) return std::string(what) + (hi_open ? " < " : " <= ") + format_shortest(hi);
   return format_shortest(lo) + (lo_open ? " < " : " <= ") + std::string(what) + (hi_open ? " < " : " <= ") +
          format_shortest(hi);
 }

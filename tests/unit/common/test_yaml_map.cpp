@@ -63,6 +63,17 @@ TEST_CASE("MapReader reads checked values and names keys alone") {
         }) == "t.yaml:1:7: unknown parameter 'd' for the sub (it takes none)");
 }
 
+TEST_CASE("MapReader::boolean: a plain true or false, nothing else") {
+  const yaml_reader::SourceOf<TestError> src("t.yaml");
+  CHECK(by_key(src, yaml_document::load_single("a: true\n", "empty")).boolean("a"));
+  CHECK_FALSE(by_key(src, yaml_document::load_single("a: false\n", "empty")).boolean("a"));
+  const auto read_a = [](const auto& s, const YAML::Node& n) { by_key(s, n).boolean("a"); };
+  CHECK(error_of("a: yes\n", read_a) == "t.yaml:1:4: expected true or false for 'a', got 'yes'");
+  CHECK(error_of("a: \"true\"\n", read_a) == "t.yaml:1:4: expected true or false for 'a', got the quoted string \"true\"");
+  CHECK(error_of("a: [true]\n", read_a) == "t.yaml:1:4: expected true or false for 'a', got a list");
+  CHECK(error_of("b: 1\n", read_a) == "t.yaml:1:1: missing required key 'a' in the test");
+}
+
 TEST_CASE("MapReader::at_path names keys by their path from the top") {
   CHECK(error_of("z: 1\n", by_path) == "t.yaml:1:1: unknown key 'z' at the top level (expected one of a, b, sub)");
   CHECK(error_of("sub: {c: 1.5}\n", [](const auto& s, const YAML::Node& n) {

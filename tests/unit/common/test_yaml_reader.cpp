@@ -1,6 +1,7 @@
 // The pieces of YAML reading every reader shares (common/yaml).
 #include <doctest/doctest.h>
 
+#include <limits>
 #include <string>
 
 #include "p3at/common/located_error.hpp"
@@ -51,4 +52,12 @@ TEST_CASE("Range: open and closed ends, described with the shortest numbers") {
   CHECK(r.contains(1.0));
   CHECK(r.describe("p") == "0 < p <= 1");
   CHECK(yaml_reader::Range{0.1, 2.5}.describe("x") == "0.1 <= x <= 2.5");
+  // One infinite end (the world file's "> 0" scales): only the finite bound is named.
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const yaml_reader::Range positive{0.0, kInf, true, false};
+  CHECK(positive.contains(1e300));
+  CHECK_FALSE(positive.contains(0.0));
+  CHECK(positive.describe("s") == "s > 0");
+  CHECK(yaml_reader::Range{-1.0, kInf}.describe("e") == "e >= -1");
+  CHECK(yaml_reader::Range{-kInf, 2.0, false, true}.describe("v") == "v < 2");
 }

@@ -68,6 +68,47 @@ TEST_CASE("summary: percentiles by nearest rank, fractions within the bounds, GO
   CHECK(text.find("7 on 1 evaluable") != std::string::npos);
 }
 
+TEST_CASE("table lines: the printf layout, and an error text of any length kept whole") {
+  // The layout the tables had when they were printf'd ("%-18s %zu robot%s  time %.3f / %.3f ...").
+  MissionResult r = result("gen_4", 0.02, 0.01, 0.03, 1);
+  CHECK(mission_line(r, Bounds{}) ==
+        "gen_4              2 robots  time 0.020 / 0.010  radius 0.010 / 0.005  joint 0.030 / 0.015  "
+        "over-confident GO 1  ok");
+  r.robots = 1;
+  r.evaluable = false;
+  r.score.time.strict = 0.0625;  // beyond the 0.05 bound, within it with the 1 % shift
+  CHECK(mission_line(r, Bounds{}) ==
+        "gen_4              1 robot   time 0.062 / 0.010  radius 0.010 / 0.005  joint 0.030 / 0.015  "
+        "over-confident GO 1 (cannot evaluate)  ok within 1 %");
+
+  // A could-not-run line used to be cut at 400 bytes (a fixed buffer); a
+  // loader's message naming a long path is longer than that.
+  MissionResult broken;
+  broken.name = "gen_12";
+  broken.error = "/tmp/" + std::string(500, 'd') + "/world.yaml:3:10: expected a number for 'x_m', got 'north'";
+  REQUIRE(broken.error.size() > 400);
+  const std::string line = mission_line(broken, Bounds{});
+  CHECK(line == "gen_12             could not run: " + broken.error);
+  CHECK(line.size() == 18 + 16 + broken.error.size());
+  // And a name longer than its column widens it, as printf did.
+  broken.name = std::string(30, 'n');
+  CHECK(mission_line(broken, Bounds{}) == std::string(30, 'n') + " could not run: " + broken.error);
+
+  std::vector<MissionResult> rs{result("a", 0.01, 0.02, 0.03, 0), result("b", 0.1, 0.02, 0.09, 2)};
+  CHECK(summary_text(summarize(rs, Bounds{}), Bounds{}) ==
+        "missions 2: scored 2 (of which verify cannot evaluate 0), could not run 0; 2000 validation runs\n"
+        "max |verify - validate|     worst    p50    p90    p95   within bound\n"
+        "time curve, strict          0.100  0.010  0.100  0.100   1 of 2 (50 %) <= 0.05\n"
+        "time curve, 1 % shift       0.050  0.005  0.050  0.050   2 of 2 (100 %) <= 0.05\n"
+        "radius curve, strict        0.020  0.020  0.020  0.020   2 of 2 (100 %) <= 0.05\n"
+        "radius curve, 1 % shift     0.010  0.010  0.010  0.010   2 of 2 (100 %) <= 0.05\n"
+        "joint surface, strict       0.090  0.030  0.090  0.090   1 of 2 (50 %) <= 0.08\n"
+        "joint surface, 1 % shift    0.045  0.015  0.045  0.045   2 of 2 (100 %) <= 0.08\n"
+        "all three within 0.05/0.05/0.08: strict 1 of 2 (50 %), with the 1 % shift 2 (100 %)\n"
+        "over-confident GO cells (verify >= 0.8, validation's 95 % interval below 0.78): 2 on 1 evaluable "
+        "missions; 0 more on missions verify cannot evaluate\n");
+}
+
 TEST_CASE("JSON: the keys a machine reads, in order") {
   MissionResult r = result("gen_4", 0.02, 0.01, 0.03, 1);
   r.approximations = {"NOISE redrawn inside a leg"};

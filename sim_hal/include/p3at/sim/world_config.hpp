@@ -5,10 +5,10 @@
 
 #include <cstdint>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "p3at/common/located_error.hpp"
 #include "p3at/sim/geometry.hpp"
 #include "p3at/sim/radio.hpp"
 #include "p3at/sim/robot_model.hpp"
@@ -22,11 +22,12 @@ struct WorldConfig {
   std::optional<std::uint64_t> seed;  ///< the file's `seed:`, if any (--seed overrides)
 };
 
-/// A world file that cannot be used. what() is one line:
-/// "FILE:LINE:COLUMN: what was expected".
-class WorldFileError : public std::runtime_error {
+/// A world file that cannot be used: the project's located error (common/),
+/// what() one line, "FILE:LINE:COLUMN: what was expected" ("FILE: ..." when
+/// there is no position, as for a file that cannot be opened).
+class WorldFileError : public LocatedError {
  public:
-  using std::runtime_error::runtime_error;
+  using LocatedError::LocatedError;
 };
 
 /// Parses world YAML. `source_name` names the text in messages (a file path).

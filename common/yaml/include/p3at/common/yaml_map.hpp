@@ -1,13 +1,14 @@
 #pragma once
 // The one reader of a YAML mapping with a fixed set of keys, shared by the
-// mission loader and the verifier's robot-models reader: construction checks
+// mission loader, the verifier's robot-models reader and the simulator's world
+// loader: construction checks
 // it is a mapping with no duplicate and no unknown key; every getter checks
 // the value's type and range; every failure is the reader's LocatedError at
 // the node, saying what was expected.
 //
 // Two ways of naming keys in messages, one per file format:
-//  - by the key alone, with the mapping described in words (missions:
-//    "unknown key 'x' in robot", "expected a number for 'max_speed_mps'");
+//  - by the key alone, with the mapping described in words (missions and
+//    worlds: "unknown key 'x' in robot", "expected a number for 'max_speed_mps'");
 //  - by a dotted path from the top (robot models: "robots[0].motion.cycle_s").
 
 #include <yaml-cpp/yaml.h>
@@ -58,6 +59,8 @@ class MapReader {
   std::int64_t integer_or(std::string_view key, std::int64_t lo, std::int64_t hi, std::int64_t fallback) const;
   /// Any string scalar (plain or quoted).
   std::string string(std::string_view key) const;
+  /// A plain `true` or `false` (a quoted "true" is a string, as a quoted "2" is not a number).
+  bool boolean(std::string_view key) const;
   /// A list; fails if the value is not a sequence.
   YAML::Node sequence(std::string_view key) const;
 

@@ -1,7 +1,7 @@
 #pragma once
 // Typed, located reading of yaml-cpp nodes: the pieces every YAML reader of
 // the project shares (the mission loader, the verifier's robot-models
-// reader, the world files' walls): where an error is, what a node is,
+// reader, the simulator's world loader): where an error is, what a node is,
 // numeric ranges, checked numbers. Each reader throws its own LocatedError
 // subclass through a SourceOf<Error>; the readers' code sees only Source.
 // The mapping reader built on these is yaml_map.hpp.
@@ -64,7 +64,8 @@ std::string describe(const YAML::Node& node);
 /// its text) or explicitly tagged !!int / !!float. A quoted "2" is a string.
 bool may_be_number(const YAML::Node& node);
 
-/// A closed or open numeric interval, rendered in messages as "0 < x <= 1".
+/// A closed or open numeric interval, rendered in messages as "0 < x <= 1";
+/// with one infinite bound, by its finite one alone ("x > 0").
 struct Range {
   double lo;
   double hi;
