@@ -363,3 +363,12 @@ TEST_CASE("random terms and expressions round-trip") {
     CHECK(pars::parse_term(pars::to_pretty_string(t, 4, 40)) == t);
   }
 }
+
+TEST_CASE("a comment's trailing carriage returns are all dropped, so it prints and reads back the same") {
+  // Found by fuzz_pars_parser (a long run): "x\r\r" kept "x\r", printed as "# x\r", read back "x".
+  const p3at::verifier::pars::Program p =
+      p3at::verifier::pars::parse_program("# note\r\r\nA = stop\n", "crlf.pars");
+  REQUIRE(p.definitions.size() == 1);
+  CHECK(p.definitions[0].comment == "note");
+  CHECK(p3at::verifier::pars::parse_program(p3at::verifier::pars::to_string(p), "printed.pars") == p);
+}
