@@ -8,11 +8,22 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
 namespace p3at::test {
+
+/// The vipars binary the build made (P3AT_VIPARS_BIN, set by the test's
+/// CMake target), else the one beside the running test, never one on PATH.
+inline std::string vipars_binary() {
+#ifdef P3AT_VIPARS_BIN
+  return P3AT_VIPARS_BIN;
+#else
+  return (std::filesystem::read_symlink("/proc/self/exe").parent_path() / "vipars").string();
+#endif
+}
 
 /// The whole file, bytes as they are; "" if it cannot be read.
 inline std::string read_file(const std::string& path) {

@@ -26,13 +26,7 @@ namespace {
 
 using Run = p3at::test::CommandOutcome;
 
-std::string vipars() {
-#ifdef P3AT_VIPARS_BIN
-  return P3AT_VIPARS_BIN;
-#else
-  return (fs::read_symlink("/proc/self/exe").parent_path() / "vipars").string();
-#endif
-}
+std::string vipars() { return p3at::test::vipars_binary(); }
 
 std::string honest(const std::string& mission, const std::string& file) {
   return std::string(P3AT_SOURCE_DIR) + "/tests/data/honest/" + mission + "/" + file;

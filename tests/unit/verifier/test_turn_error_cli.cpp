@@ -20,13 +20,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string vipars() {
-#ifdef P3AT_VIPARS_BIN
-  return P3AT_VIPARS_BIN;
-#else
-  return (fs::read_symlink("/proc/self/exe").parent_path() / "vipars").string();
-#endif
-}
+std::string vipars() { return p3at::test::vipars_binary(); }
 
 std::string data(const std::string& name) {
   return std::string(P3AT_SOURCE_DIR) + "/tests/unit/verifier/data/turn_error/" + name;
