@@ -88,12 +88,12 @@ TEST_CASE("blend_branches: two branches' mixtures about their merged mean") {
   CHECK(explained_cov(m)(0, 0) == doctest::Approx(0.75 + 0.04));
 }
 
-TEST_CASE("common_xy_cov: total less what the components explain, never negative") {
+TEST_CASE("floored_psd: total less what the components explain, never negative") {
   Eigen::Matrix3d total = Eigen::Matrix3d::Identity() * 0.01;
   const ErrorMixture m = two_sided(0.05, 0.0);
-  const Eigen::Matrix2d c = common_xy_cov(total, m);
+  const Eigen::Matrix2d c = floored_psd((total - explained_cov(m)).topLeftCorner<2, 2>());
   CHECK(c(0, 0) == doctest::Approx(0.01 - 0.0025));
   CHECK(c(1, 1) == doctest::Approx(0.01));
-  const Eigen::Matrix2d floored = common_xy_cov(Eigen::Matrix3d::Zero(), m);
+  const Eigen::Matrix2d floored = floored_psd(-explained_cov(m).topLeftCorner<2, 2>());
   CHECK(floored.minCoeff() >= -1e-15);
 }

@@ -183,10 +183,9 @@ Eigen::Matrix3d explained_cov(const ErrorMixture& m) {
   return s;
 }
 
-Eigen::Matrix2d common_xy_cov(const Eigen::Matrix3d& total, const ErrorMixture& m) {
-  Eigen::Matrix2d r = (total - explained_cov(m)).topLeftCorner<2, 2>();
-  r = 0.5 * (r + r.transpose());
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(r);
+Eigen::Matrix2d floored_psd(Eigen::Matrix2d m) {
+  m = 0.5 * (m + m.transpose());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(m);
   const Eigen::Vector2d values = eig.eigenvalues().cwiseMax(0.0);
   return eig.eigenvectors() * values.asDiagonal() * eig.eigenvectors().transpose();
 }

@@ -59,8 +59,10 @@ void reduce(ErrorMixture& m, std::size_t max_components);
 /// sum w_k (C_k + delta_k delta_k^T): the covariance the components explain.
 Eigen::Matrix3d explained_cov(const ErrorMixture& m);
 
-/// The covariance common to every component: total minus explained, with
-/// negative eigenvalues (rounding, linearisation) floored at zero; x, y block.
-Eigen::Matrix2d common_xy_cov(const Eigen::Matrix3d& total, const ErrorMixture& m);
+/// A covariance difference made a covariance again: symmetrised, negative
+/// eigenvalues (rounding, linearisation) floored at zero. For what is common
+/// to every component (the total less what the components explain) and for
+/// what a set of end points does not show.
+Eigen::Matrix2d floored_psd(Eigen::Matrix2d m);
 
 }  // namespace p3at::verifier::engine

@@ -777,9 +777,9 @@ class Sequencer {
         // With end points, they carry the last leg's paths' errors; without,
         // the whole mixture does.
         const ErrorMixture& kept = t.spread_points.empty() ? t.error_mix : t.error_mix_before_leg;
-        Eigen::Matrix3d shown = explained_cov(kept);
-        if (!t.spread_points.empty()) shown.topLeftCorner<2, 2>() += t.leg_paths_cov;
-        const Eigen::Matrix2d common = common_xy_cov(t.error.cov - shown, {}) + t.extra_cov +
+        Eigen::Matrix2d shown = explained_cov(kept).topLeftCorner<2, 2>();
+        if (!t.spread_points.empty()) shown += t.leg_paths_cov;
+        const Eigen::Matrix2d common = floored_psd(t.error.cov.topLeftCorner<2, 2>() - shown) + t.extra_cov +
                                        (t.spread_points.empty() ? t.spread : t.spread_points_within);
         const std::vector<Eigen::Vector2d> ends =
             t.spread_points.empty() ? std::vector<Eigen::Vector2d>{Eigen::Vector2d::Zero()} : t.spread_points;

@@ -10,7 +10,6 @@
 #include <variant>
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 
 #include "engine/noise_segments.hpp"
 #include "engine/trigger_phase.hpp"
@@ -351,13 +350,6 @@ void settle_phases(std::vector<FinishedPath>& done, std::size_t directions) {
     p->walker.q.theta_rad += move * p->step(2);
     p->phase_cycles = offsets[j];
   }
-}
-
-Eigen::Matrix2d floored_psd(Eigen::Matrix2d m) {
-  m = 0.5 * (m + m.transpose());
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(m);
-  const Eigen::Vector2d values = eig.eigenvalues().cwiseMax(0.0);
-  return eig.eigenvectors() * values.asDiagonal() * eig.eigenvectors().transpose();
 }
 
 StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const BaseState& start,
