@@ -22,7 +22,11 @@ namespace p3at::team_sim {
 namespace {
 
 constexpr std::string_view kMagic = "vipars-validation-part";
-constexpr int kVersion = 1;
+// 2: a successful run's distances are where each robot came to rest after
+// entering its final state. Version 1 parts recorded them where the run
+// stopped (a robot alone at the cycle its last trigger fired, 3-33 cm short
+// of where it stops), so their runs are not comparable and are refused.
+constexpr int kVersion = 2;
 
 Error invalid(std::string message) { return make_error(Error::Code::invalid_argument, std::move(message)); }
 
@@ -486,6 +490,11 @@ Result<CampaignPart> parse_part(std::string_view text, const std::string& source
   if (magic.size() != 2 || magic[0] != kMagic) {
     return lines.error("expected '" + std::string(kMagic) + "\t" + std::to_string(kVersion) + "', got " +
                        shown(magic[0]));
+  }
+  if (magic[1] == "1") {
+    return lines.error("part format version 1, this vipars reads version " + std::to_string(kVersion) +
+                       ": version 1 recorded a finished robot's distance where its last trigger fired, not where it "
+                       "came to rest, so its runs cannot be counted with new ones; rerun its shard (or its runs)");
   }
   if (magic[1] != std::to_string(kVersion)) {
     return lines.error("part format version " + std::string(magic[1]) + ", this vipars reads version " +

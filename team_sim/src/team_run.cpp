@@ -101,6 +101,18 @@ std::string why_not_finished(const mission::Mission& mission, std::size_t i, con
   return where + (waits.empty() ? ", still on its way" : ", still on its way (or waiting for " + waits + ")");
 }
 
+/// True when no robot of the world moves: both velocities of every base are
+/// zero (the simulated firmware's ramps brake to exactly zero, so the bound
+/// only guards against rounding).
+bool all_at_rest(const sim::World& world) {
+  constexpr double kRestMps = 1e-9, kRestRadps = 1e-9;
+  for (std::size_t i = 0; i < world.robot_count(); ++i) {
+    const sim::MotionController& c = world.robot(i).controller();
+    if (std::abs(c.trans_vel_mps()) > kRestMps || std::abs(c.rot_vel_radps()) > kRestRadps) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 TeamScenario::TeamScenario(mission::Mission mission, const sim::WorldConfig& world) : mission_(std::move(mission)) {
@@ -158,6 +170,7 @@ RunResult TeamScenario::run(std::uint64_t run_index, std::uint64_t seed, const R
   result.closest_approach_m = std::numeric_limits<double>::infinity();
   const auto timeout_us = static_cast<std::int64_t>(options.timeout_s * 1e6);
   const auto settle_us = static_cast<std::int64_t>(options.settle_s * 1e6);
+  const auto rest_us = static_cast<std::int64_t>(options.rest_s * 1e6);
   std::int64_t all_ended_us = -1;
   // Where each robot last moved (10 cm or more), and when: for a timeout's reason.
   std::vector<std::pair<double, double>> last_moved_xy(n);
@@ -186,7 +199,16 @@ RunResult TeamScenario::run(std::uint64_t run_index, std::uint64_t seed, const R
       if (all_ended_us < 0) all_ended_us = world.time_us();
       // Give teammates' last acknowledgements a moment, as mission_exec does.
       const bool settled = std::all_of(executives.begin(), executives.end(), [](const auto& e) { return e->team_settled(); });
-      if (settled || world.time_us() - all_ended_us >= settle_us) break;
+      // A finished mission's final positions are where the robots come to
+      // rest: each executive stopped its base on entering its final state,
+      // and the base brakes from the speed it had (a robot that finished
+      // early has long stopped; the last one is still braking now). An abort
+      // is recorded where it stands.
+      const bool all_finished = std::all_of(executives.begin(), executives.end(), [](const auto& e) {
+        return e->outcome().phase == exec::Phase::finished;
+      });
+      const bool resting = !all_finished || all_at_rest(world) || world.time_us() - all_ended_us >= rest_us;
+      if ((settled || world.time_us() - all_ended_us >= settle_us) && resting) break;
     }
   }
   if (n < 2) result.closest_approach_m = 0.0;

@@ -18,6 +18,7 @@
 #include <string>
 
 #include "cli_run.hpp"
+#include "p3at/team_sim/part_file.hpp"
 
 namespace {
 
@@ -137,6 +138,25 @@ TEST_CASE("vipars crosscheck --reuse-runs: the folder's runs give the same resul
   CHECK(damaged.err.find("not reusing") != std::string::npos);
   CHECK(damaged.err.find("reused from") == std::string::npos);
   CHECK(without_timing(nlohmann::json::parse(read_file(dir / "a/crosscheck.json"))) == without_timing(fresh));
+
+  // Runs of an older vipars, whose distances were where the last trigger
+  // fired rather than where the robot came to rest: their file is intact
+  // (valid checksum), but its format version says so; refused, runs made again.
+  bytes = read_file(part);
+  const std::string v2 = "vipars-validation-part\t2\n";
+  REQUIRE(bytes.rfind(v2, 0) == 0);
+  std::string body = "vipars-validation-part\t1\n" + bytes.substr(v2.size(), bytes.rfind("end\t") - v2.size());
+  const std::string end_line = bytes.substr(bytes.rfind("end\t"));
+  const std::string runs_field = end_line.substr(4, end_line.find('\t', 4) - 4);
+  std::ofstream(part, std::ios::binary | std::ios::trunc)
+      << body << "end\t" << runs_field << "\tblake2b-256\t" << p3at::team_sim::part_checksum(body) << "\n";
+  const Outcome old = run(campaign, dir);
+  REQUIRE(old.status == 0);
+  CHECK(old.err.find("not reusing") != std::string::npos);
+  CHECK(old.err.find("part format version 1") != std::string::npos);
+  CHECK(old.err.find("reused from") == std::string::npos);
+  CHECK(without_timing(nlohmann::json::parse(read_file(dir / "a/crosscheck.json"))) == without_timing(fresh));
+  CHECK(read_file(part).rfind(v2, 0) == 0);  // the runs made again, in the current format
   fs::remove_all(dir);
 }
 

@@ -1,9 +1,11 @@
 // The parallel campaign runner: run i's seed depends on (campaign seed, i)
 // only, results come back by index, so any number of threads gives the same
-// campaign; failed runs are kept; a run that throws stops the campaign.
+// campaign; failed runs are kept; a run that throws stops the campaign. And
+// what a finished run records: each robot's poses where it came to rest.
 
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -132,6 +134,62 @@ TEST_CASE("runs that time out are kept and counted as failed") {
   // robot2 never moved: still its 2 m from its goal.
   CHECK(p.robots[1].dist_mean_m == doctest::Approx(2.0).epsilon(0.02));
   CHECK(p.robots[0].dist_mean_m < 1.9);
+}
+
+TEST_CASE("a finished run records each robot where it came to rest, past where its final AtGoal fired") {
+  // tests/data/run_out: one robot still at 0.5 m/s when AtGoal fires 0.3 m
+  // short of its goal (dropoff 0.3 m); its final Stop brakes it at the
+  // simulated P3-AT's 0.6 m/s^2, 0.5^2 / 1.2 = 0.208 m (0.206 m in the
+  // firmware's 10 ms ramp steps) further along its heading.
+  const std::string dir = std::string(P3AT_SOURCE_DIR) + "/tests/data/run_out/";
+  const TeamScenario scenario(p3at::mission::load_mission_file(dir + "mission.yaml"),
+                              p3at::sim::load_world_file(dir + "world.yaml"));
+  const double heading = 30.0 * 3.14159265358979323846 / 180.0;
+  p3at::team_sim::RunOptions at_firing;
+  at_firing.rest_s = 0.0;  // ends at the cycle the last robot finished: where AtGoal fired
+  p3at::team_sim::RunOptions cut_short;
+  cut_short.rest_s = 0.5;  // the braking takes 0.84 s: the bound stops it part-way
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    CAPTURE(seed);
+    const RunResult fired = scenario.run(0, seed, at_firing);
+    const RunResult rest = scenario.run(0, seed);
+    const RunResult part = scenario.run(0, seed, cut_short);
+    REQUIRE(fired.success());
+    REQUIRE(rest.success());
+    REQUIRE(part.success());
+    // The completion time is when the robot entered its final state, however long it then brakes.
+    CHECK(rest.time_s == fired.time_s);
+    CHECK(part.time_s == fired.time_s);
+    CHECK(rest.robots[0].end_time_s == fired.robots[0].end_time_s);
+    CHECK(rest.cycles > part.cycles);
+    CHECK(part.cycles > fired.cycles);
+    const auto& f = fired.robots[0];
+    const auto& r = rest.robots[0];
+    // Fired within the radius, at rest past it, along the heading by the whole braking distance.
+    CHECK(std::hypot(f.odom_x_m - 5.4641, f.odom_y_m - 4.0) <= 0.3);
+    const double along = (r.true_x_m - f.true_x_m) * std::cos(heading) + (r.true_y_m - f.true_y_m) * std::sin(heading);
+    const double across = -(r.true_x_m - f.true_x_m) * std::sin(heading) + (r.true_y_m - f.true_y_m) * std::cos(heading);
+    CHECK(along == doctest::Approx(0.206).epsilon(0.01));
+    CHECK(std::abs(across) < 0.002);
+    const double odom_along = std::hypot(r.odom_x_m - f.odom_x_m, r.odom_y_m - f.odom_y_m);
+    CHECK(odom_along == doctest::Approx(0.206).epsilon(0.03));  // odometry counts it, with its random error
+    CHECK(r.dist_to_goal_m < f.dist_to_goal_m - 0.15);
+    // Cut short by the bound: part of the way.
+    const double part_along = std::hypot(part.robots[0].true_x_m - f.true_x_m, part.robots[0].true_y_m - f.true_y_m);
+    CHECK(part_along > 0.1);
+    CHECK(part_along < along - 0.03);
+  }
+  // Never past the run's timeout: a timeout 0.3 s after the firing stops the braking there, the run still a success.
+  const RunResult fired = scenario.run(0, 1, at_firing);
+  p3at::team_sim::RunOptions tight;
+  tight.timeout_s = fired.time_s + 0.1 + 0.3;  // the executive's clock starts at the first cycle, 0.1 s in
+  const RunResult stopped = scenario.run(0, 1, tight);
+  CHECK(stopped.success());
+  CHECK(stopped.time_s == fired.time_s);
+  const double stopped_along =
+      std::hypot(stopped.robots[0].true_x_m - fired.robots[0].true_x_m, stopped.robots[0].true_y_m - fired.robots[0].true_y_m);
+  CHECK(stopped_along > 0.05);
+  CHECK(stopped_along < 0.18);
 }
 
 TEST_CASE("a run that throws stops the campaign and the error reaches the caller") {

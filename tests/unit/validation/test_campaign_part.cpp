@@ -264,6 +264,19 @@ TEST_CASE("a damaged part is refused, naming the file, never read as a wrong cou
     std::string swapped = text.substr(0, a) + text.substr(b, c - b) + text.substr(a, b - a) + text.substr(c);
     CHECK(error_of(resealed(swapped)).find("expected run 14, got run 15") != std::string::npos);
   }
+  SUBCASE("a version 1 part (distances where the last trigger fired, not at rest): refused, saying why") {
+    // Written by a vipars before final positions were recorded at rest; its
+    // checksum is valid, its runs well formed: only the version tells.
+    REQUIRE(text.rfind("vipars-validation-part\t2\n", 0) == 0);
+    const std::string old = resealed(replaced(text, "vipars-validation-part\t2\n", "vipars-validation-part\t1\n"));
+    const std::string e = error_of(old);
+    CHECK(e.find("shard-1.part:1: part format version 1, this vipars reads version 2") == 0);
+    CHECK(e.find("not where it came to rest") != std::string::npos);
+    CHECK(e.find("rerun its shard") != std::string::npos);
+    // Another unknown version is refused too, without that reason.
+    const std::string future = resealed(replaced(text, "vipars-validation-part\t2\n", "vipars-validation-part\t3\n"));
+    CHECK(error_of(future) == "shard-1.part:1: part format version 3, this vipars reads version 2");
+  }
   SUBCASE("behind a valid checksum: a shard whose runs are not its share") {
     const std::string forged = resealed(replaced(text, "runs\t13\t26", "runs\t13\t27"));
     CHECK(error_of(forged).find("shard-1.part:6: runs: shard 1/3 of 40 trials is runs 13 26") == 0);

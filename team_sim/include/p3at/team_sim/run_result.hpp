@@ -14,8 +14,10 @@ struct RobotResult {
   std::string phase;                 ///< "finished", "aborted", "running" (timed out)
   std::string reason;                ///< why aborted
   double end_time_s = 0.0;           ///< when its FSA ended (or the run's end)
-  double true_x_m = 0.0, true_y_m = 0.0;  ///< true final position (world frame)
-  double odom_x_m = 0.0, odom_y_m = 0.0;  ///< where it believed it was
+  /// True final position (world frame): for a successful run where the robot
+  /// came to rest after entering its final state, else where it stood when the run ended.
+  double true_x_m = 0.0, true_y_m = 0.0;
+  double odom_x_m = 0.0, odom_y_m = 0.0;  ///< where it believed it was (same moment)
   double dist_to_goal_m = 0.0;       ///< true distance to its goal (RobotSpec::goal)
   double cycle_p50_us = 0.0;         ///< the executive's compute time per cycle (measured, not simulated)
   double cycle_p99_us = 0.0;
