@@ -178,7 +178,9 @@ TEST_CASE("shipped examples whose kinds are vouched keep their GO / NO-GO") {
   REQUIRE(j["p_joint_widened"].is_number());
   CHECK(j["p_joint_widened"].get<double>() <= j["p_joint"].get<double>());
   // Where the curve is steep the widened answer refuses what the unwidened would launch.
-  const Run steep = run("verify " + relay + " --rmax 0.21 --json");
+  // (At 0.19 m: 0.843 unwidened, 0.079 widened. It was 0.21 m before the
+  // final stop's run-out moved both robots about 1 cm closer to their goals.)
+  const Run steep = run("verify " + relay + " --rmax 0.19 --json");
   const nlohmann::json s = nlohmann::json::parse(steep.out);
   CHECK(s["p_joint"].get<double>() >= 0.8);
   CHECK(s["p_joint_widened"].get<double>() < 0.8);

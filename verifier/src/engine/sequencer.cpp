@@ -362,10 +362,23 @@ class Sequencer {
     }
     if (spec.is_final(state)) {
       track.final = true;
-      track.finish = b.clock;
-      track.analysis = StateAnalysis{};
-      track.analysis.end = track.base;
-      track.analysis.error = track.error;
+      track.finish = b.clock;  // the completion time: entering the final state
+      // The final position is where the robot comes to rest: the executive
+      // stops the base here and it brakes from the speed it fired at (v^2 /
+      // (2 decel): 7.5 cm at 0.3 m/s on a P3-AT). The run-out moves the odometric base and
+      // carries the error along it as a state change does in fire(); the
+      // spread points are relative to the base and ride with it.
+      StateContext ctx;
+      ctx.robot = &spec;
+      ctx.model = robot_models_[i];
+      ctx.models = &models_;
+      track.analysis = analyze_final(ctx, state, track.base, track.error);
+      outcome_.work_cycles += track.analysis.cycles_simulated;
+      const double dx = track.analysis.end.x_m - track.base.x_m, dy = track.analysis.end.y_m - track.base.y_m;
+      transport(track.error_mix, dx, dy);
+      transport(track.error_mix_before_leg, dx, dy);
+      track.base = track.analysis.end;
+      track.error = track.analysis.error;
       out.push_back(std::move(b));
       return;
     }

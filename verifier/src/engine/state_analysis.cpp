@@ -602,4 +602,10 @@ StateAnalysis analyze_state(const StateContext& context, std::size_t state_index
   return a;
 }
 
+StateAnalysis analyze_final(const StateContext& context, std::size_t state_index, const BaseState& start,
+                            const ErrorState& error_start) {
+  // A final state has no outgoing transition, so the still state's braking is all there is.
+  return analyze_still(context, state_index, start, error_start);
+}
+
 }  // namespace p3at::verifier::engine

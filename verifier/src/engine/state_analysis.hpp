@@ -84,6 +84,14 @@ struct StateContext {
 StateAnalysis analyze_state(const StateContext& context, std::size_t state_index, const BaseState& start,
                             const ErrorState& error_start);
 
+/// Final state `state_index` of the robot, entered with odometric base `start`
+/// (its velocities those at the firing) and error `error_start`: the executive
+/// stops the base on entering a final state, whatever its behaviour, so the
+/// robot runs out its braking as in a Stop. `end` is where the base comes to
+/// rest and `error` the error propagated over the run-out (no exits).
+StateAnalysis analyze_final(const StateContext& context, std::size_t state_index, const BaseState& start,
+                            const ErrorState& error_start);
+
 /// A delay (seconds) seen through the executive's cycle: the number of whole
 /// cycles until it has elapsed (at least one), as a mixture over cycle counts.
 Mixture1 delay_in_cycles(const Mixture1& delay_s, double cycle_s, std::size_t max_components);
