@@ -58,3 +58,35 @@ TEST_CASE("gen_1166: the U-turn's error carried through four more states") {
   INFO("verify " << predicted << " m, 300 runs " << simulated << " m");
   CHECK(std::abs(predicted - simulated) < 0.04);
 }
+
+TEST_CASE("a U-turn decided by where the previous leg ended: both ways, as in the runs") {
+  // The first leg's NOISE paths end heading a little left or right of north;
+  // the second leg (no NOISE) turns around the shorter way from there. Started
+  // from the first leg's mean pose every path turned the same way: the robot
+  // was predicted on one side of its goal (mean x 4.19 m, sd 0.007 m) where
+  // the runs end on both (mean x 4.52 m, sd 0.32 m).
+  const auto r = p3at::test::run_command(vipars() + " verify " + data("uturn_after_leg.yaml") + " --models " +
+                                         data("models.yaml") + " --json");
+  REQUIRE(!r.out.empty());
+  const nlohmann::json robot = nlohmann::json::parse(r.out).at("robots").at(0);
+  const auto s = p3at::test::run_command(vipars() + " simulate " + data("uturn_after_leg.yaml") + " --world " +
+                                         data("world_north.yaml") + " --runs 300 --seed 1 --json");
+  REQUIRE(s.status == 0);
+  double sum = 0.0, sum2 = 0.0;
+  const nlohmann::json runs = nlohmann::json::parse(s.out).at("runs");
+  for (const nlohmann::json& run : runs) {
+    const double x = run.at("robots").at(0).at("true_x_m").get<double>();
+    sum += x;
+    sum2 += x * x;
+  }
+  const double n = static_cast<double>(runs.size());
+  const double mean_x = sum / n, sd_x = std::sqrt(std::max(0.0, sum2 / n - mean_x * mean_x));
+  const double predicted_x = robot.at("final_x_m").get<double>();
+  // final_sd_m is sqrt(trace / 2) of the final position's covariance; the
+  // spread is all across (x), so the x sd is final_sd_m * sqrt(2).
+  const double predicted_sd_x = robot.at("final_sd_m").get<double>() * std::sqrt(2.0);
+  INFO("verify x " << predicted_x << " sd " << predicted_sd_x << "; 300 runs x " << mean_x << " sd " << sd_x);
+  CHECK(std::abs(predicted_x - mean_x) < 0.08);
+  CHECK(predicted_sd_x > 0.7 * sd_x);
+  CHECK(predicted_sd_x < 1.3 * sd_x);
+}

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Eigenvalues>
+
 #include "p3at/executive/frames.hpp"
 
 namespace p3at::verifier::engine {
@@ -20,6 +22,49 @@ BaseState lerp(const BaseState& a, const BaseState& b, double f) {
   out.theta_rad = a.theta_rad + f * (b.theta_rad - a.theta_rad);
   out.trans_mps = a.trans_mps + f * (b.trans_mps - a.trans_mps);
   out.rot_radps = a.rot_radps + f * (b.rot_radps - a.rot_radps);
+  return out;
+}
+
+/// Weighted offsets as as many equally likely ones (the sequencer's spread
+/// points are equally likely): slabs of equal probability along their
+/// principal axis, each slab's mean. Equal weights are kept as they are.
+std::vector<Eigen::Vector2d> equal_weight_offsets(const std::vector<Eigen::Vector2d>& points,
+                                                  const std::vector<double>& weights) {
+  const std::size_t n = points.size();
+  if (n == 0) return {};
+  const bool equal = std::all_of(weights.begin(), weights.end(),
+                                 [&](double w) { return std::abs(w - weights.front()) <= 1e-12 * std::max(1.0, w); });
+  if (equal) return points;
+  double total = 0.0;
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (std::size_t j = 0; j < n; ++j) {
+    total += weights[j];
+    cov += weights[j] * points[j] * points[j].transpose();
+  }
+  if (!(total > 0.0)) return points;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+  const Eigen::Vector2d axis = eig.eigenvectors().col(1);
+  std::vector<std::size_t> order(n);
+  for (std::size_t j = 0; j < n; ++j) order[j] = j;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return points[a].dot(axis) < points[b].dot(axis); });
+  const double slab = total / static_cast<double>(n);
+  std::vector<Eigen::Vector2d> sums(n, Eigen::Vector2d::Zero());
+  std::vector<double> masses(n, 0.0);
+  double c0 = 0.0;
+  for (const std::size_t j : order) {
+    const double c1 = c0 + weights[j];
+    for (std::size_t k = 0; k < n; ++k) {
+      const double overlap = std::min(c1, static_cast<double>(k + 1) * slab) - std::max(c0, static_cast<double>(k) * slab);
+      if (overlap > 0.0) {
+        sums[k] += overlap * points[j];
+        masses[k] += overlap;
+      }
+    }
+    c0 = c1;
+  }
+  std::vector<Eigen::Vector2d> out;
+  for (std::size_t k = 0; k < n; ++k) out.push_back(masses[k] > 0.0 ? Eigen::Vector2d(sums[k] / masses[k]) : Eigen::Vector2d::Zero());
   return out;
 }
 
@@ -101,7 +146,6 @@ std::vector<InterruptionBin> interruption_bins(const LegTrajectory& leg, const M
   std::vector<InterruptionBin> out;
   const std::size_t paths = leg.paths.size();
   if (paths == 0 || tau_s.components.empty()) return out;
-  const double w = 1.0 / static_cast<double>(paths);
 
   // How far the robot moves over τ's spread decides whether one bin will do.
   const double mean = tau_s.mean(), sd = std::sqrt(std::max(0.0, tau_s.variance()));
@@ -123,15 +167,20 @@ std::vector<InterruptionBin> interruption_bins(const LegTrajectory& leg, const M
     std::vector<ErrorState> errors;
     Eigen::Vector2d mean_xy = Eigen::Vector2d::Zero();
     std::vector<Eigen::Vector2d> points;
+    std::vector<double> headings;
     BaseState avg;
     // Headings averaged within pi of path 0's (paths that turned around in
     // opposite directions are a whole turn apart as continuous angles).
     const double ref_theta = pose_at(leg, 0, bin.tau_mean_s).base.theta_rad;
+    std::vector<double> ws(paths);
     for (std::size_t j = 0; j < paths; ++j) {
+      const double w = leg.weight(j);
+      ws[j] = w;
       TrajectoryPoint p = pose_at(leg, j, bin.tau_mean_s);
       p.base.theta_rad = ref_theta + exec::wrap_angle_rad(p.base.theta_rad - ref_theta);
       errors.push_back(p.error);
       points.emplace_back(p.base.x_m, p.base.y_m);
+      headings.push_back(p.base.theta_rad);
       mean_xy += w * points.back();
       avg.x_m += w * p.base.x_m;
       avg.y_m += w * p.base.y_m;
@@ -145,12 +194,14 @@ std::vector<InterruptionBin> interruption_bins(const LegTrajectory& leg, const M
       bin.within += w * v * v.transpose() * bin.tau_var_s2;
     }
     bin.base = avg;
-    const std::vector<double> ws(paths, w);
     bin.error = combine(errors.data(), ws.data(), paths);
-    for (const Eigen::Vector2d& p : points) {
-      bin.offsets.push_back(p - mean_xy);
-      bin.spread += w * (p - mean_xy) * (p - mean_xy).transpose();
+    for (std::size_t j = 0; j < paths; ++j) {
+      bin.path_offsets.push_back(points[j] - mean_xy);
+      bin.weights.push_back(ws[j]);
+      bin.headings.push_back(headings[j]);
+      bin.spread += ws[j] * (points[j] - mean_xy) * (points[j] - mean_xy).transpose();
     }
+    bin.offsets = equal_weight_offsets(bin.path_offsets, bin.weights);
     out.push_back(std::move(bin));
   }
   return out;

@@ -28,8 +28,13 @@ struct InterruptionBin {
   double tau_var_s2 = 0.0;      ///< Var[τ | bin]
   BaseState base;               ///< mean odometric pose (and velocities) over the paths at tau_mean_s
   ErrorState error;             ///< the paths' errors there, moment-matched
-  /// Each path's odometric position minus the mean (equal weights).
+  /// Each path's odometric position minus the mean, as equally likely points
+  /// (the paths' own when they are equally likely, else slabs of them).
   std::vector<Eigen::Vector2d> offsets;
+  /// Each path's offset, weight and heading (for the next state's start points).
+  std::vector<Eigen::Vector2d> path_offsets;
+  std::vector<double> weights;
+  std::vector<double> headings;
   /// The covariance of `offsets`.
   Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
   /// The motion within the bin: Σ_j w_j v_j v_jᵀ Var[τ | bin], v_j path j's velocity there.

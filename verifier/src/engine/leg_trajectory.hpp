@@ -22,10 +22,15 @@ struct TrajectoryPoint {
 
 struct LegTrajectory {
   double cycle_s = 0.1;
-  /// paths[j][n]: quadrature path j (equal weights) after n cycles; n = 0 is
+  /// paths[j][n]: quadrature path j after n cycles; n = 0 is
   /// the entry. A path's list ends at the cycle its own exit fired (or at the
   /// state's cycle cap): a later time finds the robot where the list ends.
   std::vector<std::vector<TrajectoryPoint>> paths;
+  /// paths[j]'s probability (they sum to 1; equal when empty).
+  std::vector<double> weights;
+  double weight(std::size_t j) const {
+    return j < weights.size() ? weights[j] : 1.0 / static_cast<double>(paths.empty() ? 1 : paths.size());
+  }
 };
 
 }  // namespace p3at::verifier::engine

@@ -80,8 +80,8 @@ Walker merge(const std::vector<const Walker*>& members) {
     out.before.rot_radps += f * m->before.rot_radps;
     out.turned_rad += f * m->turned_rad;
     out.turned_before_rad += f * m->turned_before_rad;
-    out.odo_trans_var += f * m->odo_trans_var;
-    out.odo_turn_var += f * m->odo_turn_var;
+    out.at_goal_jitter_var += f * m->at_goal_jitter_var;
+    out.turn_jitter_var += f * m->turn_jitter_var;
     out.error.mean += f * m->error.mean;
     out.error.cov += f * m->error.cov;
   }
@@ -196,9 +196,21 @@ std::vector<Walker> reduce_walkers(const std::vector<Walker>& walkers, std::size
 NoiseQuadrature noise_quadrature(const PathStepper& stepper, const Walker& start, std::int64_t persistence,
                                  std::size_t directions, std::size_t keep, std::size_t keep_near, std::size_t cap,
                                  LegTrajectory* record) {
+  Walker one = start;
+  one.weight = 1.0;
+  return noise_quadrature(stepper, std::vector<Walker>{one}, persistence, directions, keep, keep_near, cap, record);
+}
+
+NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<Walker>& starts,
+                                 std::int64_t persistence, std::size_t directions, std::size_t keep,
+                                 std::size_t keep_near, std::size_t cap, LegTrajectory* record) {
   NoiseQuadrature out;
-  if (record != nullptr) record->paths.assign(std::max<std::size_t>(directions, 1), {});
   directions = std::max<std::size_t>(directions, 1);
+  const std::size_t n_starts = std::max<std::size_t>(starts.size(), 1);
+  if (record != nullptr) {
+    record->paths.assign(n_starts * directions, {});
+    record->weights.assign(n_starts * directions, 0.0);
+  }
   const std::size_t every = stepper.sample_every();
   // The mean path: sums of weight × position per sample index.
   std::vector<double> sx, sy, sw;
@@ -216,22 +228,32 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const Walker& start
   };
 
   const std::size_t length = persistence > 0 ? static_cast<std::size_t>(persistence) : cap + 1;
-  std::vector<Walker> live{start};
-  live.front().weight = 1.0;
+  std::vector<Walker> live = starts;
+  {
+    double total = 0.0;
+    for (const Walker& w : live) total += w.weight;
+    for (Walker& w : live) w.weight = total > 0.0 ? w.weight / total : 1.0 / static_cast<double>(live.size());
+  }
   for (std::size_t segment = 0; !live.empty(); ++segment) {
     if (segment > 0) ++out.redraws;
     const std::size_t until = std::min(cap, (segment + 1) * length);
     std::vector<Walker> children;
-    for (const Walker& parent : live) {
+    for (std::size_t s = 0; s < live.size(); ++s) {
+      const Walker& parent = live[s];
+      // The first draw's start points each turn the directions by a fraction
+      // of their spacing (stratified); later draws are one cloud of walkers.
+      const double stagger = segment == 0 ? (static_cast<double>(s) + 0.5) / static_cast<double>(n_starts) : 0.5;
       for (std::size_t j = 0; j < directions; ++j) {
-        const double angle = 2.0 * kPi * (static_cast<double>(j) + 0.5) / static_cast<double>(directions) +
+        const double angle = 2.0 * kPi * (static_cast<double>(j) + stagger) / static_cast<double>(directions) +
                              static_cast<double>(segment) * kGoldenAngleRad;
         Walker w = parent;
         w.weight = parent.weight / static_cast<double>(directions);
         // Recorded until the robot has come to rest for good (a leg waiting
         // at its goal for a message): beyond the record the pose is held.
+        const std::size_t path = s * directions + j;
         std::vector<TrajectoryPoint>* trace =
-            (record != nullptr && segment == 0) ? &record->paths[j] : nullptr;
+            (record != nullptr && segment == 0) ? &record->paths[path] : nullptr;
+        if (trace != nullptr) record->weights[path] = w.weight;
         for (;;) {
           if (trace != nullptr) {
             if (trace->size() >= 2 && at_rest(w.q) && at_rest(trace->back().base)) {
@@ -241,7 +263,7 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const Walker& start
             }
           }
           if (const auto exit = stepper.fired(w)) {
-            FinishedPath done{w, *exit, segment, j, 0.0};
+            FinishedPath done{w, *exit, segment, j, segment == 0 ? s : 0, 0.0};
             done.phase_cycles = stepper.settle_phase(done.walker, *exit, &done.crossing_c, &done.step, &done.crossing_sd);
             out.finished.push_back(done);
             break;

@@ -32,6 +32,7 @@ struct FinishedPath {
   std::size_t exit = 0;          ///< the transition that fired
   std::size_t segment = 0;       ///< the NOISE draw it fired under (0: the first)
   std::size_t direction = 0;     ///< the quadrature direction of that draw
+  std::size_t start = 0;         ///< the start point it came from (0 when the state has one)
   double phase_cycles = 0.0;     ///< settle_phase()'s offset
   double crossing_c = -1.0;      ///< the crossing's fraction into the last cycle (-1: not crossed by moving toward it)
   Eigen::Vector3d step = Eigen::Vector3d::Zero();  ///< the last cycle's step before the phase move
@@ -59,6 +60,16 @@ struct NoiseQuadrature {
 NoiseQuadrature noise_quadrature(const PathStepper& stepper, const Walker& start, std::int64_t persistence,
                                  std::size_t directions, std::size_t keep, std::size_t keep_near, std::size_t cap,
                                  LegTrajectory* record = nullptr);
+
+/// The same from several start points (weights summing to 1: where the
+/// previous state left the robot, state_analysis.hpp's StartPoint): each
+/// start splits into `directions` paths under the first draw (start s's
+/// directions turned by s / starts of the quadrature's spacing, so that the
+/// starts together sample the circle more finely); `record` then holds
+/// starts x directions paths (index s * directions + j) with their weights.
+NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<Walker>& starts,
+                                 std::int64_t persistence, std::size_t directions, std::size_t keep,
+                                 std::size_t keep_near, std::size_t cap, LegTrajectory* record = nullptr);
 
 /// Reduces weighted walkers (all at the same cycle) to at most `keep`: seeds
 /// by weighted farthest point (the heaviest first), two nearest-centre

@@ -73,32 +73,28 @@ double PathStepper::settle_phase(Walker& w, std::size_t transition, double* cros
     from = std::hypot(g->goal.x_m - w.before.x_m, g->goal.y_m - w.before.y_m);
     to = std::hypot(g->goal.x_m - w.q.x_m, g->goal.y_m - w.q.y_m);
     threshold = g->radius_m;
-    progress_var = w.odo_trans_var;
+    progress_var = w.at_goal_jitter_var;
   } else if (const auto* h = std::get_if<mission::HasTurnedParams>(&trigger)) {
     from = -w.turned_before_rad;  // decreasing toward -threshold, like a distance
     to = -w.turned_rad;
     threshold = -(h->angle_deg - h->offset_deg) * kDegToRad;
-    progress_var = w.odo_turn_var;
+    progress_var = w.turn_jitter_var;
   } else {
     return 0.0;
   }
   if (!(from > threshold) || !(from > to)) return 0.0;  // fired at once, or not by moving toward it
   const double c = std::clamp((from - threshold) / (from - to), 0.0, 1.0);
   if (crossing_c) *crossing_c = c;
-  // The odometric progress is off by N(0, progress_var) at the crossing,
-  // along the direction of motion: that moves the crossing by that over the
-  // last cycle's step along the same direction (for AtGoal the step's length,
-  // not its radial part: an approach at an angle projects the error and the
-  // step alike, and a grazing one would otherwise divide by almost 0).
-  double along = from - to;
-  if (std::holds_alternative<mission::AtGoalParams>(trigger)) along = std::hypot(w.q.x_m - w.before.x_m, w.q.y_m - w.before.y_m);
-  if (crossing_sd && along > 0.0) *crossing_sd = std::sqrt(std::max(progress_var, 0.0)) / along;
+  // The crossing time is off by N(0, progress_var) cycles (Walker::at_goal_jitter_var).
+  if (crossing_sd) *crossing_sd = std::sqrt(std::max(progress_var, 0.0));
   const double phase = c - 0.5;
   w.q.x_m += phase * (w.q.x_m - w.before.x_m);
   w.q.y_m += phase * (w.q.y_m - w.before.y_m);
   w.q.theta_rad += phase * (w.q.theta_rad - w.before.theta_rad);
   return phase;
 }
+
+const std::vector<Segment>& PathStepper::obstacles() const { return ctx_.obstacles; }
 
 bool PathStepper::delicate(const Walker& w) const {
   if (!go_) return false;
@@ -133,8 +129,19 @@ void PathStepper::step(Walker& w, double noise_angle_rad) const {
   w.turned_before_rad = w.turned_rad;
   const CycleIncrement inc = step_cycle(w.q, trans, rot, k);
   propagate(w.error, inc, ctx_.model->motion);
-  w.odo_trans_var += ctx_.model->motion.trans_rel_var * inc.ds_m * inc.ds_m;
-  w.odo_turn_var += ctx_.model->motion.rot_rel_var * inc.dtheta_rad * inc.dtheta_rad;
+  if (go_ && std::abs(inc.ds_m) > 0.0) {
+    // The fraction of the step that closes on the goal (a step across the
+    // bearing leaves the believed distance, and so the crossing, alone).
+    const double gx = go_->goal.x_m - w.before.x_m, gy = go_->goal.y_m - w.before.y_m;
+    const double range = std::hypot(gx, gy);
+    const double dx = w.q.x_m - w.before.x_m, dy = w.q.y_m - w.before.y_m;
+    const double step = std::hypot(dx, dy);
+    if (range > 0.0 && step > 0.0) {
+      const double radial = (dx * gx + dy * gy) / (range * step);
+      if (radial > 0.0) w.at_goal_jitter_var += ctx_.model->motion.trans_rel_var * radial * radial;
+    }
+  }
+  if (inc.dtheta_rad != 0.0) w.turn_jitter_var += ctx_.model->motion.rot_rel_var;
   w.turned_rad += std::abs(exec::wrap_angle_rad(inc.dtheta_rad));
   ++w.cycles;
 }

@@ -28,13 +28,18 @@ struct Walker {
   double turned_rad = 0.0;      ///< odometric turn accumulated since the state's entry
   double turned_before_rad = 0.0;
   std::size_t cycles = 0;       ///< cycles since the state's entry
-  /// Variance of the odometric distance driven (m^2) and turned (rad^2) since
-  /// the state's entry from the odometry's relative random error: the
-  /// simulator multiplies each update's odometric translation and rotation by
+  /// Variance (in cycles^2) of when AtGoal and HasTurned cross their
+  /// thresholds, from the odometry's relative random error: the simulator
+  /// multiplies each update's odometric translation and rotation by
   /// (1 + N(0, sd^2)) (docs/simulator.md), so it is the odometric pose, the
-  /// one the triggers read, that jitters, and when a trigger fires with it.
-  double odo_trans_var = 0.0;
-  double odo_turn_var = 0.0;
+  /// one the triggers read, that jitters. A cycle's error n moves the believed
+  /// distance to the goal by n times the cycle's radial step, and the time
+  /// left by that over the radial speed, which is the step over one cycle: so
+  /// every cycle of progress toward the threshold adds sd^2 cycles^2,
+  /// whatever the speed (a slow approach does not magnify it: its small steps
+  /// carry small errors). Likewise for the turn.
+  double at_goal_jitter_var = 0.0;
+  double turn_jitter_var = 0.0;
   double weight = 1.0;          ///< quadrature weight (probability) of this path
 };
 
@@ -51,7 +56,7 @@ class PathStepper {
   /// fraction into the last cycle (else -1) and `step` the last cycle's step
   /// (x, y, heading) before the move, for settle_phases() (trigger_phase.hpp);
   /// `crossing_sd` the crossing time's standard deviation in cycles from the
-  /// odometry's random error (Walker::odo_trans_var, odo_turn_var), else 0.
+  /// odometry's random error (Walker::at_goal_jitter_var, turn_jitter_var), else 0.
   double settle_phase(Walker& w, std::size_t transition, double* crossing_c = nullptr,
                       Eigen::Vector3d* step = nullptr, double* crossing_sd = nullptr) const;
   /// One cycle under NOISE direction `noise_angle_rad`.
@@ -63,6 +68,10 @@ class PathStepper {
   bool delicate(const Walker& w) const;
 
   const mission::GoToGuardedParams* go() const { return go_; }
+  /// How close (m, from the robot's centre) an obstacle must be for AVOID_OBSTACLES to act.
+  double avoid_reach_m() const { return avoid_reach_m_; }
+  /// The walls and teammates' bodies the state is analysed against.
+  const std::vector<Segment>& obstacles() const;
   /// Cycles between mean-path samples (one second).
   std::size_t sample_every() const { return sample_every_; }
 

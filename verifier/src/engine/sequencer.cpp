@@ -171,6 +171,10 @@ struct Track {
   Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
   std::vector<Eigen::Vector2d> spread_points;  ///< the points `spread` is the covariance of (may be empty)
   StateAnalysis analysis;         ///< of the current state
+  /// Where the previous state left the robot (equally likely points around
+  /// `base`; state_analysis.hpp's StartPoint): the current state's paths
+  /// start from them. Empty: from `base`.
+  std::vector<StartPoint> start_points;
   std::vector<Pending> pending;
   bool final = false;
   Mixture1 finish;
@@ -388,9 +392,8 @@ class Sequencer {
     ctx.model = robot_models_[i];
     ctx.models = &models_;
     ctx.obstacles = obstacles_near(b, i, state);
-    track.analysis = analyze_state(ctx, state, track.base, track.error);
+    track.analysis = cached_analysis(ctx, i, state, track);
     outcome_.subsystems += 1;
-    outcome_.work_cycles += track.analysis.cycles_simulated;
     record_path_separations(b, i);
 
     // Exits driven by messages already on their way.
@@ -434,6 +437,40 @@ class Sequencer {
           {e.transition, e.duration_s, {}, sum(b.clock, e.duration_s, k()), child.robots[i].lineage});
       out.push_back(std::move(child));
     }
+  }
+
+  /// analyze_state() is a pure function of its inputs, and branches that
+  /// differ only in other robots' orderings enter a robot's state with the
+  /// same ones: the analysis is made once per distinct input (bit for bit, so
+  /// the answer is what recomputing would give) and the work budget counts
+  /// only the cycles really simulated. On generated 6-robot missions the same
+  /// state was otherwise analysed once per branch (up to 32 times).
+  StateAnalysis cached_analysis(const StateContext& ctx, std::size_t i, std::size_t state, const Track& track) {
+    std::string key;
+    const auto put = [&key](double v) { key.append(reinterpret_cast<const char*>(&v), sizeof v); };
+    put(static_cast<double>(i));
+    put(static_cast<double>(state));
+    for (const double v : {track.base.x_m, track.base.y_m, track.base.theta_rad, track.base.trans_mps, track.base.rot_radps}) put(v);
+    for (Eigen::Index r = 0; r < 3; ++r) {
+      put(track.error.mean(r));
+      for (Eigen::Index c = 0; c < 3; ++c) put(track.error.cov(r, c));
+    }
+    for (const StartPoint& p : track.start_points) {
+      for (const double v : {p.q.x_m, p.q.y_m, p.q.theta_rad, p.q.trans_mps, p.q.rot_radps}) put(v);
+      for (Eigen::Index r = 0; r < 3; ++r) put(p.error_offset(r));
+    }
+    key.push_back('|');
+    for (const Segment& g : ctx.obstacles) {
+      for (const double v : {g.x0, g.y0, g.x1, g.y1}) put(v);
+    }
+    const auto it = analysis_cache_.find(key);
+    if (it != analysis_cache_.end()) return it->second;
+    StateAnalysis a = analyze_state(ctx, state, track.base, track.error, track.start_points);
+    outcome_.work_cycles += a.cycles_simulated;
+    // Bounded (the first entries stay: deterministic); an analysis holds a
+    // trajectory for interruptible states, so the cache is kept modest.
+    if (analysis_cache_.size() < kMaxCachedAnalyses) analysis_cache_.emplace(std::move(key), a);
+    return a;
   }
 
   std::vector<Segment> obstacles_near(const BranchState& b, std::size_t i, std::size_t state) const {
@@ -703,6 +740,7 @@ class Sequencer {
     }
     t.error_mix = convolve(t.error_mix, t.analysis.error_paths, kMaxErrorComponents);
     t.base = t.analysis.end;
+    t.start_points = t.analysis.end_points;
     t.error = t.analysis.error;
     if (t.analysis.sets_spread) {
       t.spread = t.analysis.end_spread;
@@ -759,6 +797,20 @@ class Sequencer {
       ti.leg_paths_cov.setZero();
       ti.spread_points_within.setZero();
       ti.base = bin.base;
+      ti.start_points.clear();
+      {
+        std::vector<StartPoint> points;
+        std::vector<double> keys;
+        for (std::size_t j = 0; j < bin.path_offsets.size(); ++j) {
+          BaseState q = bin.base;
+          q.x_m += bin.path_offsets[j].x();
+          q.y_m += bin.path_offsets[j].y();
+          q.theta_rad = bin.headings[j];
+          points.push_back({q, Eigen::Vector3d::Zero()});
+          keys.push_back(static_cast<double>(j));
+        }
+        ti.start_points = equal_weight_points(points, bin.weights, keys, kStartPointsCarried);
+      }
       ti.error = bin.error;
       ti.spread = bin.spread;
       ti.spread_points = bin.offsets;
@@ -882,6 +934,30 @@ class Sequencer {
       ta.spread_points_within = (wa * ta.spread_points_within + wb * tb.spread_points_within) / w;
       ta.error = combine(errors, ws, 2);
       ta.spread = (wa * ta.spread + wb * tb.spread) / w;
+      // Both branches' start points, each weighted by its branch, as equally
+      // likely points again (in order of heading: turns one way or the other).
+      if (!ta.start_points.empty() || !tb.start_points.empty()) {
+        std::vector<StartPoint> points;
+        std::vector<double> weights, keys;
+        const auto add = [&](const std::vector<StartPoint>& from, const BaseState& base, double share) {
+          if (from.empty()) {
+            BaseState q = base;
+            q.theta_rad = ta.base.theta_rad + std::remainder(q.theta_rad - ta.base.theta_rad, 2.0 * 3.14159265358979323846);
+            points.push_back({q, Eigen::Vector3d::Zero()});
+            weights.push_back(share);
+          } else {
+            for (StartPoint p : from) {
+              p.q.theta_rad = ta.base.theta_rad + std::remainder(p.q.theta_rad - ta.base.theta_rad, 2.0 * 3.14159265358979323846);
+              points.push_back(p);
+              weights.push_back(share / static_cast<double>(from.size()));
+            }
+          }
+        };
+        add(ta.start_points, ta.base, wa / w);
+        add(tb.start_points, tb.base, wb / w);
+        for (const StartPoint& p : points) keys.push_back(std::remainder(p.q.theta_rad - ta.base.theta_rad, 2.0 * 3.14159265358979323846));
+        ta.start_points = equal_weight_points(points, weights, keys, kStartPointsCarried);
+      }
       // Point j of both is the end of the same NOISE direction: blend them
       // pointwise; lists that do not match fall back to the Gaussian.
       if (ta.spread_points.size() == tb.spread_points.size()) {
@@ -971,6 +1047,8 @@ class Sequencer {
   std::size_t entering_ = kNone;
   std::set<std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>> legs_seen_;  ///< concurrent_legs' keys  ///< while the initial states are entered: the robot entering
   std::map<std::pair<std::size_t, std::size_t>, ErrorState> entry_errors_;
+  static constexpr std::size_t kMaxCachedAnalyses = 2048;
+  std::map<std::string, StateAnalysis> analysis_cache_;
 };
 
 }  // namespace

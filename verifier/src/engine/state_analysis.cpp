@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -10,6 +11,7 @@
 #include <variant>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 
 #include "engine/noise_segments.hpp"
 #include "engine/trigger_phase.hpp"
@@ -86,8 +88,9 @@ std::size_t cycle_cap(const StateContext& ctx, std::size_t state, const BaseStat
 /// all paths (the U-turn's two groups ended on the two sides of the arc, so
 /// the end positions "explained" their errors), 0.477 m carrying everything.
 ErrorState error_given_end(const std::vector<FinishedPath>& done, const std::vector<long>& turns,
-                           ErrorMixture* paths = nullptr) {
+                           ErrorMixture* paths = nullptr, std::vector<Eigen::Vector3d>* explained = nullptr) {
   ErrorState out;
+  if (explained != nullptr) explained->assign(done.size(), Eigen::Vector3d::Zero());
   double total = 0.0;
   for (const FinishedPath& p : done) total += p.walker.weight;
   if (done.empty() || !(total > 0.0)) return out;
@@ -135,6 +138,8 @@ ErrorState error_given_end(const std::vector<FinishedPath>& done, const std::vec
                               (group_e[g] - out.mean) - b.transpose() * (group_q[g] - q_mean);
     const double f = p.walker.weight / total;
     out.cov += f * (p.walker.error.cov + r * r.transpose());
+    // What the path's end pose explains (its error is the mean plus this plus r).
+    if (explained != nullptr) (*explained)[static_cast<std::size_t>(i)] = b.transpose() * (pose(p) - q_mean);
     if (paths != nullptr && f > 0.0) paths->push_back({f, r, Eigen::Matrix3d::Zero()});
   }
   if (paths != nullptr) reduce(*paths, kMaxErrorComponents);
@@ -261,6 +266,45 @@ Mixture1 redrawn_duration(const std::vector<double>& values, const std::vector<d
   return m;
 }
 
+/// The same, but a kernel never spreads mass across a redraw: paths held
+/// off their goal by a NOISE direction escape after the next redraw, so the
+/// duration comes in lumps one draw apart (generated gen_1042's 8.6 m leg,
+/// persistence 800: 41 % of runs at 54-63 s, 53 % at 80-82 s, 4 % near
+/// 160 s; one kernel over them all made it one smooth 79 +- 31 s). When the
+/// draws are long against the kernel (persistence > 4 x its width), each
+/// draw's firings get their own kernel; shorter draws blur together anyway.
+Mixture1 redrawn_duration_by_draw(const std::vector<double>& values, const std::vector<double>& weights,
+                                  const std::vector<std::size_t>& segments, double persistence_s,
+                                  std::size_t max_components) {
+  const Mixture1 whole = redrawn_duration(values, weights, max_components);
+  double kernel_var = 0.0, wsum = 0.0;
+  for (const Component1& c : whole.components) {
+    kernel_var += c.weight * c.var;
+    wsum += c.weight;
+  }
+  if (!(wsum > 0.0) || !(persistence_s > 4.0 * std::sqrt(kernel_var / wsum))) return whole;
+  std::map<std::size_t, std::pair<std::vector<double>, std::vector<double>>> by_draw;
+  double total = 0.0;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    by_draw[segments[i]].first.push_back(values[i]);
+    by_draw[segments[i]].second.push_back(weights[i]);
+    total += weights[i];
+  }
+  if (by_draw.size() < 2 || !(total > 0.0)) return whole;
+  Mixture1 out;
+  for (const auto& [segment, group] : by_draw) {
+    (void)segment;
+    double mass = 0.0;
+    for (const double w : group.second) mass += w;
+    if (!(mass > 0.0)) continue;
+    const Mixture1 part = redrawn_duration(group.first, group.second, max_components);
+    for (const Component1& c : part.components) out.components.push_back({c.weight * mass / total, c.mean, c.var});
+  }
+  out.normalise();
+  reduce(out, max_components);
+  return out;
+}
+
 /// `directions` equal-weight points standing for the finished paths' end
 /// positions (relative to their weighted mean): the paths sorted by their
 /// bearing from the goal (their ends lie on the AtGoal circle), cut into
@@ -315,11 +359,12 @@ std::vector<Eigen::Vector2d> equal_weight_ends(const std::vector<FinishedPath>& 
 /// directions), spread sd = |T_next - T_prev| / 2 / sqrt(12); the end pose is
 /// moved, along the last step, from the half-cycle average settle_phase()
 /// assumed to the firing that spread gives (the one deterministic check when
-/// all paths are alike).
-void settle_phases(std::vector<FinishedPath>& done, std::size_t directions) {
+/// all paths are alike). One start point's paths at a time (their directions
+/// are the circle).
+void settle_phases(std::vector<FinishedPath>& done, std::size_t directions, std::size_t start) {
   std::vector<FinishedPath*> by_direction(directions, nullptr);
   for (FinishedPath& p : done) {
-    if (p.direction < directions) by_direction[p.direction] = &p;
+    if (p.start == start && p.direction < directions) by_direction[p.direction] = &p;
   }
   const auto crossing = [](const FinishedPath& p) {
     return static_cast<double>(p.walker.cycles) - 1.0 + std::max(p.crossing_c, 0.0);
@@ -352,8 +397,188 @@ void settle_phases(std::vector<FinishedPath>& done, std::size_t directions) {
   }
 }
 
+/// Which way (and how far) a robot at q must turn to face the state's goal
+/// (GoToGuarded), or its heading relative to `ref` (Spin): the order in which
+/// start points are merged, so that robots turning left and robots turning
+/// right stay apart.
+double entry_key(const BaseState& q, const mission::GoToGuardedParams* go, double ref_theta) {
+  if (go != nullptr) return std::remainder(std::atan2(go->goal.y_m - q.y_m, go->goal.x_m - q.x_m) - q.theta_rad, 2.0 * kPi);
+  return std::remainder(q.theta_rad - ref_theta, 2.0 * kPi);
+}
+
+/// The walkers a motion state's paths start from: the robot's start points
+/// (recentred on `start`, the mean the sequencer carries), merged to at most
+/// kStartPointsEntered in entry_key's order, each with the common error plus
+/// its own explained offset; one walker at `start` when there are no points
+/// or they all but coincide (a still robot, a leg without spread).
+std::vector<Walker> entry_walkers(const mission::GoToGuardedParams* go, const BaseState& start,
+                                  const ErrorState& error_start, const std::vector<StartPoint>& points) {
+  Walker one;
+  one.q = start;
+  one.before = start;
+  one.error = error_start;
+  if (points.size() <= 1) return {one};
+  const double n = static_cast<double>(points.size());
+  StartPoint mean;
+  mean.q = BaseState{};
+  for (const StartPoint& p : points) {
+    mean.q.x_m += p.q.x_m / n;
+    mean.q.y_m += p.q.y_m / n;
+    mean.q.theta_rad += (start.theta_rad + std::remainder(p.q.theta_rad - start.theta_rad, 2.0 * kPi)) / n;
+    mean.q.trans_mps += p.q.trans_mps / n;
+    mean.q.rot_radps += p.q.rot_radps / n;
+    mean.error_offset += p.error_offset / n;
+  }
+  std::vector<StartPoint> centred;
+  double reach = 0.0;
+  for (const StartPoint& p : points) {
+    StartPoint c = p;
+    c.q.x_m += start.x_m - mean.q.x_m;
+    c.q.y_m += start.y_m - mean.q.y_m;
+    c.q.theta_rad = start.theta_rad + std::remainder(p.q.theta_rad - start.theta_rad, 2.0 * kPi) +
+                    (start.theta_rad - mean.q.theta_rad);
+    c.q.trans_mps += start.trans_mps - mean.q.trans_mps;
+    c.q.rot_radps += start.rot_radps - mean.q.rot_radps;
+    c.error_offset -= mean.error_offset;
+    reach = std::max(reach, std::hypot(c.q.x_m - start.x_m, c.q.y_m - start.y_m) +
+                                0.3 * std::abs(c.q.theta_rad - start.theta_rad) + c.error_offset.head<2>().norm());
+    centred.push_back(c);
+  }
+  // Points within a few millimetres of each other make the same paths.
+  if (reach < 0.005) return {one};
+  std::vector<double> keys, weights(centred.size(), 1.0 / n);
+  for (const StartPoint& p : centred) keys.push_back(entry_key(p.q, go, start.theta_rad));
+  std::vector<StartPoint> merged;
+  std::vector<double> merged_weights;
+  if (go == nullptr) {
+    merged = equal_weight_points(centred, weights, keys, kStartPointsEntered);
+    merged_weights.assign(merged.size(), 1.0 / static_cast<double>(merged.size()));
+  } else {
+    // A robot facing about away from its goal turns left or right depending
+    // on a few degrees of heading: the points stand for a continuous spread
+    // (each as a small Gaussian in heading, of half the points' spread), and
+    // the share of each beyond the flip (key = +-pi) turns the other way.
+    // Then the left-turners and the right-turners are merged apart.
+    double mean_theta = 0.0, var_theta = 0.0;
+    for (const StartPoint& p : centred) mean_theta += p.q.theta_rad / n;
+    for (const StartPoint& p : centred) var_theta += (p.q.theta_rad - mean_theta) * (p.q.theta_rad - mean_theta) / n;
+    const double h = std::max(0.5 * std::sqrt(var_theta), 0.005);
+    std::vector<StartPoint> side[2];
+    std::vector<double> side_w[2], side_k[2];
+    for (std::size_t i = 0; i < centred.size(); ++i) {
+      const double k = keys[i];
+      const double d = kPi - std::abs(k);  // how far from turning the other way
+      const double flip = std::abs(k) > 0.5 * kPi ? normal_cdf(-d / h) : 0.0;
+      const int s0 = k > 0.0 ? 0 : 1;
+      if (flip < 1e-3) {
+        side[s0].push_back(centred[i]);
+        side_w[s0].push_back(weights[i]);
+        side_k[s0].push_back(k);
+        continue;
+      }
+      side[s0].push_back(centred[i]);
+      side_w[s0].push_back(weights[i] * (1.0 - flip));
+      side_k[s0].push_back(k);
+      StartPoint other = centred[i];
+      const double past = d + 0.8 * h;  // the tail's mass sits about this far across
+      other.q.theta_rad -= (k > 0.0 ? 1.0 : -1.0) * past;
+      side[1 - s0].push_back(other);
+      side_w[1 - s0].push_back(weights[i] * flip);
+      side_k[1 - s0].push_back(entry_key(other.q, go, start.theta_rad));
+    }
+    double total[2] = {0.0, 0.0};
+    for (int g = 0; g < 2; ++g) {
+      for (const double w : side_w[g]) total[g] += w;
+    }
+    const bool both = total[0] > 1e-3 && total[1] > 1e-3;
+    for (int g = 0; g < 2; ++g) {
+      if (!(total[g] > (both ? 1e-3 : 0.0))) continue;
+      const std::size_t count = both ? kStartPointsEntered / 2 : kStartPointsEntered;
+      for (const StartPoint& p : equal_weight_points(side[g], side_w[g], side_k[g], count)) {
+        merged.push_back(p);
+        merged_weights.push_back(total[g] / static_cast<double>(std::min(count, side[g].size())));
+      }
+    }
+  }
+  std::vector<Walker> out;
+  for (std::size_t i = 0; i < merged.size(); ++i) {
+    Walker w;
+    w.q = merged[i].q;
+    w.before = merged[i].q;
+    w.error = error_start;
+    w.error.mean += merged[i].error_offset;
+    w.weight = merged_weights[i];
+    out.push_back(w);
+  }
+  return out;
+}
+
+/// Where the robot truly is decides whether a wall's avoidance field pins it
+/// (the sonar sees the world from the true pose), but each path steps at its
+/// error's mean: a leg that passes within avoidance reach of an obstacle
+/// for some true poses the error spread allows and not for others was all
+/// pinned or all free (generated gen_1028: verify stuck 1.0, runs 0.8;
+/// gen_1017: a doorway jamb that 10.7 % of runs hit, verify 0). So a walker
+/// whose true straight path comes within reach + 2 sd of an obstacle is split
+/// in three along the error direction that moves the leg's middle most
+/// (Gauss-Hermite: -sqrt(3), 0, +sqrt(3) sd with weights 1/6, 2/3, 1/6),
+/// each keeping the error's covariance less that direction's share: the
+/// total error distribution is unchanged, only sampled where it matters.
+std::vector<Walker> split_on_error_spread(const PathStepper& stepper, const std::vector<Walker>& in) {
+  const mission::GoToGuardedParams* go = stepper.go();
+  if (go == nullptr || stepper.obstacles().empty()) return in;
+  constexpr double kMinSdM = 0.05;  // below this the split paths would hardly differ
+  std::vector<Walker> out;
+  for (const Walker& w : in) {
+    const Eigen::Vector2d q(w.q.x_m, w.q.y_m);
+    const Eigen::Vector2d to_goal = Eigen::Vector2d(go->goal.x_m, go->goal.y_m) - q;
+    const double length = to_goal.norm();
+    if (!(length > 0.0)) {
+      out.push_back(w);
+      continue;
+    }
+    const Eigen::Vector2d dir = to_goal / length, perp(-dir.y(), dir.x());
+    // The true path's displacement at the leg's middle: e_xy + e_theta * (L / 2) * perp.
+    Eigen::Matrix<double, 2, 3> jac;
+    jac << 1.0, 0.0, 0.5 * length * perp.x(), 0.0, 1.0, 0.5 * length * perp.y();
+    const Eigen::Matrix2d mid_cov = jac * w.error.cov * jac.transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(0.5 * (mid_cov + mid_cov.transpose()));
+    const double lambda = eig.eigenvalues()(1);
+    if (!(lambda > kMinSdM * kMinSdM)) {
+      out.push_back(w);
+      continue;
+    }
+    const double sd = std::sqrt(lambda);
+    const Eigen::Vector2d true_start = q + w.error.mean.head<2>();
+    double nearest = std::numeric_limits<double>::infinity();
+    for (double s = 0.0; s <= length + 1e-9; s += 0.25) {
+      const Eigen::Vector2d at = true_start + s * dir;
+      nearest = std::min(nearest, nearest_distance(stepper.obstacles(), at.x(), at.y()));
+    }
+    if (nearest > stepper.avoid_reach_m() + 2.0 * sd) {
+      out.push_back(w);
+      continue;
+    }
+    const Eigen::Vector2d v = eig.eigenvectors().col(1);
+    const Eigen::Vector3d g = w.error.cov * jac.transpose() * v;  // Cov(e, v . displacement)
+    const Eigen::Vector3d offset = std::sqrt(3.0) * g / sd;
+    Walker centre = w;
+    centre.error.cov = w.error.cov - g * g.transpose() / lambda;
+    centre.error.cov = 0.5 * (centre.error.cov + centre.error.cov.transpose());
+    centre.weight = w.weight * 2.0 / 3.0;
+    for (const double side : {-1.0, 1.0}) {
+      Walker s = centre;
+      s.error.mean += side * offset;
+      s.weight = w.weight / 6.0;
+      out.push_back(s);
+    }
+    out.push_back(centre);
+  }
+  return out;
+}
+
 StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const BaseState& start,
-                             const ErrorState& error_start) {
+                             const ErrorState& error_start, const std::vector<StartPoint>& start_points) {
   const mission::RobotSpec& robot = *ctx.robot;
   const PathStepper stepper(ctx, state);
   const auto* go = stepper.go();
@@ -366,10 +591,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   // relay 32 x 20 0.66 -> 1.3 s. Not done.)
   const std::size_t directions = noisy ? std::max<std::size_t>(1, ctx.models->budget.noise_sigma_points) : 1;
 
-  Walker entry;
-  entry.q = start;
-  entry.before = start;
-  entry.error = error_start;
+  const std::vector<Walker> entries = split_on_error_spread(stepper, entry_walkers(go, start, error_start, start_points));
   // Walkers kept between redraws: four per direction. Measured on
   // tests/data/accuracy/noise_redrawn_leg (2,000 runs): 8 kept gave a radius
   // curve 0.24 off (each merge of the lateral spread distorts the end arc),
@@ -385,7 +607,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   auto trajectory = interruptible ? std::make_shared<LegTrajectory>() : nullptr;
   if (trajectory) trajectory->cycle_s = cycle_s;
   NoiseQuadrature quad =
-      noise_quadrature(stepper, entry, persistence, directions, keep, keep, cap, trajectory.get());
+      noise_quadrature(stepper, entries, persistence, directions, keep, keep, cap, trajectory.get());
 
   StateAnalysis a;
   a.cycles_simulated = quad.cycles_simulated;
@@ -406,12 +628,14 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   const bool draw_spans_approach =
       go != nullptr && static_cast<double>(persistence) * cycle_s * robot.max_speed_mps >= 2.0 * go->dropoff_m;
   if (quad.redraws > 0 && (draw_spans_approach || trajectory)) {
-    held = noise_quadrature(stepper, entry, 0, directions, directions, directions, cap, trajectory.get());
+    held = noise_quadrature(stepper, entries, 0, directions, directions, directions, cap, trajectory.get());
     a.cycles_simulated += held.cycles_simulated;
     if (draw_spans_approach && held.stuck <= 0.0) ends = &held;
   }
   a.trajectory = trajectory;
-  if (ends->redraws == 0) settle_phases(ends->finished, directions);
+  if (ends->redraws == 0) {
+    for (std::size_t s = 0; s < entries.size(); ++s) settle_phases(ends->finished, directions, s);
+  }
   // Headings are continuous per path, but two paths that turned around in
   // opposite directions end a whole turn apart (+pi and -pi): averaged as
   // numbers they would face the other way. Bring every end heading within pi
@@ -451,7 +675,24 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   a.end.trans_mps /= finished;
   a.end.rot_radps /= finished;
   const Eigen::Vector2d mean_xy(a.end.x_m, a.end.y_m);
-  a.error = error_given_end(ends->finished, turns, &a.error_paths);
+  std::vector<Eigen::Vector3d> explained;
+  a.error = error_given_end(ends->finished, turns, &a.error_paths, &explained);
+  {
+    // Where the state leaves the robot, for the next state's entry.
+    std::vector<StartPoint> points;
+    std::vector<double> weights, keys;
+    const double centre =
+        go != nullptr ? std::atan2(a.end.y_m - go->goal.y_m, a.end.x_m - go->goal.x_m) : a.end.theta_rad;
+    for (std::size_t j = 0; j < ends->finished.size(); ++j) {
+      const Walker& w = ends->finished[j].walker;
+      points.push_back({w.q, explained[j]});
+      weights.push_back(w.weight);
+      keys.push_back(go != nullptr
+                         ? std::remainder(std::atan2(w.q.y_m - go->goal.y_m, w.q.x_m - go->goal.x_m) - centre, 2.0 * kPi)
+                         : w.q.theta_rad - centre);
+    }
+    a.end_points = equal_weight_points(points, weights, keys, kStartPointsCarried);
+  }
   if (go) {
     a.sets_spread = true;
     for (const FinishedPath& p : ends->finished) {
@@ -462,7 +703,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
     // deviation from the mean error: the two are correlated, so they are
     // added per path, not combined as independent spreads).
     const Eigen::Vector2d error_mean = a.error.mean.head<2>();
-    if (ends->redraws == 0) {
+    if (ends->redraws == 0 && entries.size() == 1) {
       // One end point per direction, in direction order (equal weights).
       for (const FinishedPath& p : ends->finished) {
         a.end_offsets.push_back(Eigen::Vector2d(p.walker.q.x_m, p.walker.q.y_m) + p.walker.error.mean.head<2>() - error_mean -
@@ -493,19 +734,33 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
     if (mass <= 0.0) continue;
     Mixture1 duration;
     if (quad.redraws == 0) {
-      std::vector<const FinishedPath*> by_direction(directions, nullptr);
-      for (const FinishedPath& p : quad.finished) {
-        if (p.exit == t) by_direction[p.direction] = &p;
+      // Each start point's directions are a circle of their own.
+      for (std::size_t s = 0; s < entries.size(); ++s) {
+        std::vector<const FinishedPath*> by_direction(directions, nullptr);
+        double mass_s = 0.0;
+        for (const FinishedPath& p : quad.finished) {
+          if (p.exit == t && p.start == s) {
+            by_direction[p.direction] = &p;
+            mass_s += p.walker.weight;
+          }
+        }
+        if (!(mass_s > 0.0)) continue;
+        const Mixture1 part = held_duration(by_direction, directions, cycle_s, ctx.models->budget.max_components);
+        for (const Component1& c : part.components) duration.components.push_back({c.weight * mass_s, c.mean, c.var});
       }
-      duration = held_duration(by_direction, directions, cycle_s, ctx.models->budget.max_components);
+      duration.normalise();
+      reduce(duration, ctx.models->budget.max_components);
     } else {
       std::vector<double> values, ws;
+      std::vector<std::size_t> segments;
       for (const FinishedPath& p : quad.finished) {
         if (p.exit != t) continue;
         values.push_back(static_cast<double>(p.walker.cycles) * cycle_s);
         ws.push_back(p.walker.weight);
+        segments.push_back(p.segment);
       }
-      duration = redrawn_duration(values, ws, ctx.models->budget.max_components);
+      duration = redrawn_duration_by_draw(values, ws, segments, static_cast<double>(persistence) * cycle_s,
+                                          ctx.models->budget.max_components);
     }
     a.exits.push_back({t, mass, std::move(duration)});
   }
@@ -516,7 +771,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
 /// Stop / Notify: zero command; the base brakes to rest (carried over if the
 /// state is shorter than the braking, which the next state then continues).
 StateAnalysis analyze_still(const StateContext& ctx, std::size_t state, const BaseState& start,
-                            const ErrorState& error_start) {
+                            const ErrorState& error_start, const std::vector<StartPoint>& start_points) {
   const mission::RobotSpec& robot = *ctx.robot;
   const Kinematics& k = ctx.model->kinematics;
   StateAnalysis a;
@@ -543,6 +798,16 @@ StateAnalysis analyze_still(const StateContext& ctx, std::size_t state, const Ba
     ++braking_cycles;
   }
   a.cycles_simulated = braking_cycles;
+  // The start points brake the way the mean does (a still robot's points
+  // only carry on to the next motion state).
+  for (StartPoint p : start_points) {
+    p.q.x_m += a.end.x_m - start.x_m;
+    p.q.y_m += a.end.y_m - start.y_m;
+    p.q.theta_rad += a.end.theta_rad - start.theta_rad;
+    p.q.trans_mps = a.end.trans_mps;
+    p.q.rot_radps = a.end.rot_radps;
+    a.end_points.push_back(p);
+  }
 
   // Self-timed exits on a still robot fire on the first check or never.
   for (const std::size_t t : robot.states[state].outgoing) {
@@ -588,16 +853,16 @@ Mixture1 delay_in_cycles(const Mixture1& delay_s, double cycle_s, std::size_t ma
 }
 
 StateAnalysis analyze_state(const StateContext& context, std::size_t state_index, const BaseState& start,
-                            const ErrorState& error_start) {
+                            const ErrorState& error_start, const std::vector<StartPoint>& start_points) {
   const mission::BehaviorKind kind = context.robot->states[state_index].kind();
   StateAnalysis a;
   if (kind == mission::BehaviorKind::go_to_guarded || kind == mission::BehaviorKind::spin) {
-    a = analyze_motion(context, state_index, start, error_start);
+    a = analyze_motion(context, state_index, start, error_start, start_points);
     // A motion state that also listens for messages is not stuck just because
     // its own triggers never fire: the sequencer weighs the message instead.
     if (has_trigger_kind(*context.robot, state_index, mission::TriggerKind::notified) && a.exits.empty()) a.blocked = 0.0;
   } else {
-    a = analyze_still(context, state_index, start, error_start);
+    a = analyze_still(context, state_index, start, error_start, start_points);
   }
   return a;
 }
@@ -605,7 +870,60 @@ StateAnalysis analyze_state(const StateContext& context, std::size_t state_index
 StateAnalysis analyze_final(const StateContext& context, std::size_t state_index, const BaseState& start,
                             const ErrorState& error_start) {
   // A final state has no outgoing transition, so the still state's braking is all there is.
-  return analyze_still(context, state_index, start, error_start);
+  return analyze_still(context, state_index, start, error_start, {});
+}
+
+std::vector<StartPoint> equal_weight_points(const std::vector<StartPoint>& points, const std::vector<double>& weights,
+                                            const std::vector<double>& key, std::size_t n) {
+  std::vector<StartPoint> out;
+  double total = 0.0;
+  for (const double w : weights) total += std::max(w, 0.0);
+  n = std::min(n, points.size());
+  if (points.empty() || n == 0 || !(total > 0.0)) return out;
+  std::vector<std::size_t> order(points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+  const double slab = total / static_cast<double>(n);
+  std::vector<StartPoint> sums(n);
+  std::vector<double> masses(n, 0.0);
+  for (StartPoint& p : sums) p.q = BaseState{};
+  double c0 = 0.0;
+  for (const std::size_t i : order) {
+    const double w = std::max(weights[i], 0.0);
+    const double c1 = c0 + w;
+    const StartPoint& p = points[i];
+    const double theta = p.q.theta_rad;  // continuous: the callers keep the points within pi of their mean
+    const auto first = static_cast<std::size_t>(std::min(static_cast<double>(n - 1), std::floor(c0 / slab)));
+    for (std::size_t k = first; k < n; ++k) {
+      const double overlap = std::min(c1, static_cast<double>(k + 1) * slab) - std::max(c0, static_cast<double>(k) * slab);
+      if (overlap <= 0.0) {
+        if (static_cast<double>(k) * slab >= c1) break;
+        continue;
+      }
+      StartPoint& s = sums[k];
+      s.q.x_m += overlap * p.q.x_m;
+      s.q.y_m += overlap * p.q.y_m;
+      s.q.theta_rad += overlap * theta;
+      s.q.trans_mps += overlap * p.q.trans_mps;
+      s.q.rot_radps += overlap * p.q.rot_radps;
+      s.error_offset += overlap * p.error_offset;
+      masses[k] += overlap;
+    }
+    c0 = c1;
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!(masses[k] > 0.0)) continue;
+    StartPoint p = sums[k];
+    const double m = masses[k];
+    p.q.x_m /= m;
+    p.q.y_m /= m;
+    p.q.theta_rad /= m;
+    p.q.trans_mps /= m;
+    p.q.rot_radps /= m;
+    p.error_offset /= m;
+    out.push_back(p);
+  }
+  return out;
 }
 
 }  // namespace p3at::verifier::engine

@@ -34,6 +34,23 @@ struct TimedExit {
   Mixture1 duration_s;
 };
 
+/// One of equally likely points of where the previous state left the robot:
+/// its odometric pose and velocities, and the part of the true pose's error
+/// that this pose explains (error_given_end's regression within turn groups),
+/// which the next state's own steering undoes (a path that ended turned 5
+/// degrees more turns 5 degrees less next). The rest of the error, common to
+/// every point, is the ErrorState the state is entered with.
+///
+/// Why points rather than the mean pose: where a leg starts decides which way
+/// the robot turns to face its goal (a robot arriving at a patrol's end turns
+/// left or right to go back; with a rotation-scale error the two groups end
+/// with lateral errors of opposite sign), and whether a wall's avoidance field
+/// pins it. Started from the mean every path turns the same way.
+struct StartPoint {
+  BaseState q;
+  Eigen::Vector3d error_offset = Eigen::Vector3d::Zero();
+};
+
 /// A mean odometric position sample along the state's path.
 struct PathSample {
   double offset_s = 0.0;
@@ -64,6 +81,9 @@ struct StateAnalysis {
   /// above), kept apart as a mixture (engine/error_mixture.hpp); `error.cov`
   /// includes their spread. Empty for states that do not move.
   ErrorMixture error_paths;
+  /// Where the state left the robot, as equally likely points (StartPoint),
+  /// for the next state's entry; empty for a state that never ends by itself.
+  std::vector<StartPoint> end_points;
   std::vector<PathSample> path;       ///< every second, for separation (safety) criteria
   std::size_t cycles_simulated = 0;   ///< work done, for budgets and benchmarks
   /// Pose versus time per NOISE path, for a motion state a message can
@@ -82,7 +102,22 @@ struct StateContext {
 /// Evaluates state `state_index` of the robot, entered with odometric base
 /// `start` and error `error_start`.
 StateAnalysis analyze_state(const StateContext& context, std::size_t state_index, const BaseState& start,
-                            const ErrorState& error_start);
+                            const ErrorState& error_start, const std::vector<StartPoint>& start_points = {});
+
+/// At most this many start points are carried from one state to the next
+/// (StateAnalysis::end_points), and at most kStartPointsEntered of them,
+/// merged in the order that matters to the state entered (which way the
+/// robot turns to its goal), start its paths.
+inline constexpr std::size_t kStartPointsCarried = 8;
+inline constexpr std::size_t kStartPointsEntered = 4;
+
+/// `n` equally likely points standing for weighted points, in the order of
+/// `key` (ascending): slabs of equal probability of the sorted points, each
+/// the average of what falls in it. Headings are averaged as given: the
+/// caller keeps them continuous (within pi of their mean). The points'
+/// weighted mean is kept.
+std::vector<StartPoint> equal_weight_points(const std::vector<StartPoint>& points, const std::vector<double>& weights,
+                                            const std::vector<double>& key, std::size_t n);
 
 /// Final state `state_index` of the robot, entered with odometric base `start`
 /// (its velocities those at the firing) and error `error_start`: the executive
