@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
+#include <variant>
 
 #include "outcome_mass.hpp"
 
@@ -372,4 +374,122 @@ TEST_CASE("meeting (tests/data/honest/meeting): the completion time has finite, 
   REQUIRE(r);
   CHECK(r->p_time == doctest::Approx(1.0).epsilon(1e-6));
   for (const std::string& f : r->failed) CHECK(f.find("could not define") == std::string::npos);
+}
+
+namespace {
+
+/// A robot's finish time over every branch it finished in: (mean, variance).
+std::pair<double, double> finish_moments(const SystemOutcome& o, std::size_t robot) {
+  double w = 0.0, m1 = 0.0, m2 = 0.0;
+  for (const Branch& b : o.branches) {
+    const RobotOutcome& r = b.robots.at(robot);
+    if (!r.finished) continue;
+    const double mean = r.finish_time_s.mean(), var = r.finish_time_s.variance();
+    w += b.weight;
+    m1 += b.weight * mean;
+    m2 += b.weight * (var + mean * mean);
+  }
+  REQUIRE(w > 0.0);
+  m1 /= w;
+  return {m1, m2 / w - m1 * m1};
+}
+
+// Robot "steady": four legs of 2.5 m with weak NOISE, a narrow finish time.
+// Robot "wide": one 8 m leg, 20 m away, with strong NOISE held the whole leg,
+// a wide arrival time that falls, uncertainly, among steady's leg ends.
+const char* const kSteady =
+    "  - name: steady\n"
+    "    start: {x_m: 0.0, y_m: 0.0, theta_deg: 0}\n"
+    "    hal: tcp://127.0.0.1:8101\n"
+    "    max_speed_mps: 0.3\n"
+    "    states:\n"
+    "      - {name: a, behavior: GoToGuarded, params: {goal: [2.5, 0.0], dropoff_m: 0.5, noise_gain: 0.05}}\n"
+    "      - {name: b, behavior: GoToGuarded, params: {goal: [2.5, 2.5], dropoff_m: 0.5, noise_gain: 0.05}}\n"
+    "      - {name: c, behavior: GoToGuarded, params: {goal: [0.0, 2.5], dropoff_m: 0.5, noise_gain: 0.05}}\n"
+    "      - {name: d, behavior: GoToGuarded, params: {goal: [0.0, 0.0], dropoff_m: 0.5, noise_gain: 0.05}}\n"
+    "      - {name: done, behavior: Stop}\n"
+    "    transitions:\n"
+    "      - {from: a, to: b, trigger: AtGoal, params: {radius_m: 0.2}}\n"
+    "      - {from: b, to: c, trigger: AtGoal, params: {radius_m: 0.2}}\n"
+    "      - {from: c, to: d, trigger: AtGoal, params: {radius_m: 0.2}}\n"
+    "      - {from: d, to: done, trigger: AtGoal, params: {radius_m: 0.2}}\n";
+const char* const kWide =
+    "  - name: wide\n"
+    "    start: {x_m: 0.0, y_m: 20.0, theta_deg: 0}\n"
+    "    hal: tcp://127.0.0.1:8102\n"
+    "    max_speed_mps: 0.3\n"
+    "    states:\n"
+    "      - {name: go, behavior: GoToGuarded, params: {goal: [8.0, 20.0], dropoff_m: 0.5, noise_gain: 0.2, "
+    "noise_persistence_cycles: 2000}}\n"
+    "      - {name: done, behavior: Stop}\n"
+    "    transitions:\n"
+    "      - {from: go, to: done, trigger: AtGoal, params: {radius_m: 0.2}}\n";
+
+mission::Mission team(const std::string& robots) {
+  return mission::parse_mission("mission: {name: apart}\ncriteria: {tmax_s: 200, rmax_m: 1.0, threshold: 0.5}\nrobots:\n" +
+                                    robots,
+                                "apart.yaml");
+}
+
+}  // namespace
+
+TEST_CASE("independent robots: a teammate that never interacts leaves a robot's finish time as it is alone") {
+  // Two robots with no messages between them, far apart: each one's finish
+  // time must be what it is alone. The wide robot's arrival used to leak
+  // into the steady one's time once the orderings' branches were merged (the
+  // merged clock's lineage named both robots, and the steady robot's next
+  // event was taken as the clock plus a residual measured from the wide
+  // robot's arrival: its spread counted twice).
+  const mission::Mission both = team(std::string(kSteady) + kWide);
+  const mission::Mission steady = team(kSteady);
+  const mission::Mission wide = team(kWide);
+  Models models = perfect_models(both);
+  for (RobotModel& r : models.robots) r.motion.trans_rel_var = 0.03 * 0.03;
+  const SystemOutcome o = evaluate(both, models);
+  CHECK(test::accounted_mass(o) == doctest::Approx(1.0).epsilon(1e-9));
+  CHECK(o.ordering_splits >= 1);  // the arrival really falls among the leg ends
+  const auto [s_mean, s_var] = finish_moments(evaluate(steady, models), 0);
+  const auto [w_mean, w_var] = finish_moments(evaluate(wide, models), 0);
+  const auto [s2_mean, s2_var] = finish_moments(o, 0);
+  const auto [w2_mean, w2_var] = finish_moments(o, 1);
+  REQUIRE(w_var > 16.0 * s_var);  // the teammate is much the wider
+  // Within a branch each time is conditioned on the order of events, and
+  // branches are merged and moment-matched to a few components: the marginal
+  // over branches is the robot's own up to that (measured here: 0.001 s on
+  // the means, 0.2 % on the sds). Allowed: half a control cycle on the mean,
+  // 5 % on the sd (the leak made steady's sd 3.27 s for 0.19 s alone).
+  CHECK(std::abs(s2_mean - s_mean) < 0.05);
+  CHECK(std::sqrt(s2_var) == doctest::Approx(std::sqrt(s_var)).epsilon(0.05));
+  CHECK(std::abs(w2_mean - w_mean) < 0.05);
+  CHECK(std::sqrt(w2_var) == doctest::Approx(std::sqrt(w_var)).epsilon(0.05));
+}
+
+TEST_CASE("hand-over: the follower's finish time keeps the spread of the leader's message") {
+  // The relay with NOISE on both legs: robot2 starts when robot1's message
+  // arrives (a point delay here), so its finish is robot1's finish plus its
+  // own leg, and the variances add. The independence of unrelated robots
+  // (the test above) must not cut the follower loose from its leader.
+  mission::Mission m = mission::load_mission_file(data("two_robot_relay.yaml"));
+  for (mission::RobotSpec& r : m.robots) {
+    for (mission::State& s : r.states) {
+      if (auto* go = std::get_if<mission::GoToGuardedParams>(&s.behavior)) {
+        go->noise_gain = 0.3;
+        go->noise_persistence_cycles = 2000;
+      }
+    }
+  }
+  const Models models = perfect_models(m);
+  const SystemOutcome o = evaluate(m, models);
+  const auto [l_mean, l_var] = finish_moments(o, 0);
+  const auto [f_mean, f_var] = finish_moments(o, 1);
+  // robot2's leg alone (the same leg, from the same start).
+  mission::Mission alone = m;
+  alone.messages.clear();
+  alone.robots.erase(alone.robots.begin());
+  alone.robots[0].initial = 1;
+  const auto [d_mean, d_var] = finish_moments(evaluate(alone, perfect_models(alone)), 0);
+  REQUIRE(l_var > 0.05);
+  REQUIRE(d_var > 0.05);
+  CHECK(f_mean == doctest::Approx(l_mean + d_mean).epsilon(0.01));
+  CHECK(f_var == doctest::Approx(l_var + d_var).epsilon(0.1));
 }

@@ -152,6 +152,12 @@ struct Pending {
   /// that were independent of it), and whose events decided that time.
   std::optional<Mixture1> absolute;
   Lineage lineage = 0;
+  /// An event independent of this time (disjoint lineages) has advanced the
+  /// clock since the residual was set: the residual is now the difference of
+  /// two independent times, and the clock plus the residual would count that
+  /// event's spread twice (the residual cannot give it back when the event is
+  /// the wider of the two). Such a time fires at `absolute`.
+  bool detached = false;
 };
 
 struct Track {
@@ -649,7 +655,10 @@ class Sequencer {
       // independent rivals), else the clock plus the residual.
       const Pending& wp = child.robots[winner.robot].pending[winner.index];
       std::optional<Mixture1> at;
-      if (wp.absolute && independent(wp.lineage, child.clock_lineage)) at = *wp.absolute;
+      // A detached time (see Pending) is its absolute time too, whatever the
+      // clock's lineage became since (a merge of branches whose clocks were
+      // set by different robots ORs their lineages).
+      if (wp.absolute && (wp.detached || independent(wp.lineage, child.clock_lineage))) at = *wp.absolute;
       if (!sure) {
         for (std::size_t o = 0; o < rivals.size(); ++o) {
           if (o == c) continue;
@@ -705,7 +714,12 @@ class Sequencer {
         }
       }
       if (j == i) continue;
-      for (Pending& p : tj.pending) p.residual = remaining_after(p.residual, elapsed_raw, k(), &p.hidden, event);
+      for (Pending& p : tj.pending) {
+        p.residual = remaining_after(p.residual, elapsed_raw, k(), &p.hidden, event);
+        // Relative to an independent event's time, the residual no longer
+        // adds to the clock to give this time: it fires at its absolute time.
+        if (independent(p.lineage, winner_lineage)) p.detached = true;
+      }
     }
     for (std::optional<Mixture1>& d : b.delivery) {
       if (!d) continue;
@@ -918,6 +932,7 @@ class Sequencer {
         if (pa.absolute && pb.absolute) pa.absolute = blend(*pa.absolute, wa, *pb.absolute, wb, k());
         else pa.absolute.reset();
         pa.lineage |= pb.lineage;
+        pa.detached = pa.detached || pb.detached;  // the absolute is right for both; the residual for neither
       }
       ta.lineage |= tb.lineage;
       ta.entry_lineage |= tb.entry_lineage;
