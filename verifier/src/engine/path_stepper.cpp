@@ -5,6 +5,7 @@
 #include <span>
 #include <variant>
 
+#include "engine/moving_bodies.hpp"
 #include "engine/sonar_model.hpp"
 #include "p3at/executive/frames.hpp"
 #include "p3at/executive/sonar.hpp"
@@ -96,10 +97,15 @@ double PathStepper::settle_phase(Walker& w, std::size_t transition, double* cros
 
 const std::vector<Segment>& PathStepper::obstacles() const { return ctx_.obstacles; }
 
+bool PathStepper::obstacle_within(const Walker& w, double x_m, double y_m, double reach_m) const {
+  return nearest_distance(ctx_.obstacles, x_m, y_m) <= reach_m ||
+         (ctx_.movers && ctx_.movers->within(w.cycles, x_m, y_m, reach_m));
+}
+
 bool PathStepper::delicate(const Walker& w) const {
   if (!go_) return false;
   if (std::hypot(go_->goal.x_m - w.q.x_m, go_->goal.y_m - w.q.y_m) <= go_->dropoff_m + 0.5) return true;
-  return nearest_distance(ctx_.obstacles, w.q.x_m + w.error.mean(0), w.q.y_m + w.error.mean(1)) <= avoid_reach_m_ + 0.5;
+  return obstacle_within(w, w.q.x_m + w.error.mean(0), w.q.y_m + w.error.mean(1), avoid_reach_m_ + 0.5);
 }
 
 void PathStepper::step(Walker& w, double noise_angle_rad) const {
@@ -114,8 +120,17 @@ void PathStepper::step(Walker& w, double noise_angle_rad) const {
     exec::SonarObstacles<double> obstacles;
     // AVOID_OBSTACLES ignores anything beyond its reach, so when nothing is
     // that close the readings cannot matter and need not be cast (exact).
-    if (nearest_distance(ctx_.obstacles, tx, ty) <= avoid_reach_m_) {
-      const auto ranges = sonar_ranges(ctx_.obstacles, tx, ty, tth, max_range_m_);
+    // Driving teammates are where their predicted paths put them at this
+    // cycle (engine/moving_bodies.hpp); for the same reason only the bodies
+    // within reach are added to the segments the rays are cast against.
+    const bool mates_near = ctx_.movers && ctx_.movers->within(w.cycles, tx, ty, avoid_reach_m_);
+    if (mates_near || nearest_distance(ctx_.obstacles, tx, ty) <= avoid_reach_m_) {
+      std::vector<Segment> with_mates;
+      if (mates_near) {
+        with_mates = ctx_.obstacles;
+        ctx_.movers->append_within(w.cycles, tx, ty, avoid_reach_m_, with_mates);
+      }
+      const auto ranges = sonar_ranges(mates_near ? with_mates : ctx_.obstacles, tx, ty, tth, max_range_m_);
       obstacles = exec::sonar_obstacles(std::span<const double, exec::kP3atSonarCount>(ranges), pose, max_range_m_);
     }
     const exec::Vec2<double> noise{std::cos(noise_angle_rad), std::sin(noise_angle_rad)};

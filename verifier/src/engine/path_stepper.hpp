@@ -76,6 +76,10 @@ class PathStepper {
   std::size_t sample_every() const { return sample_every_; }
 
  private:
+  /// An obstacle (a wall, a still teammate, or a driving teammate where it is
+  /// at the walker's cycle) within reach_m of the true position (x, y).
+  bool obstacle_within(const Walker& w, double x_m, double y_m, double reach_m) const;
+
   const StateContext& ctx_;
   std::size_t state_;
   exec::BehaviorConfig config_;

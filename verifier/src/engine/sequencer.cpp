@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <tuple>
@@ -12,6 +13,7 @@
 #include <variant>
 
 #include "engine/interruption.hpp"
+#include "engine/moving_bodies.hpp"
 #include "engine/race.hpp"
 #include "engine/state_analysis.hpp"
 
@@ -295,6 +297,7 @@ class Sequencer {
     record_entries_ = false;
     outcome_ = SystemOutcome{};
     legs_seen_.clear();
+    look_ahead_cache_.clear();  // its cycles count toward this evaluation's budget again
 
     BranchState b;
     b.clock = Mixture1::point(snap.elapsed_s);
@@ -398,6 +401,7 @@ class Sequencer {
     ctx.model = robot_models_[i];
     ctx.models = &models_;
     ctx.obstacles = obstacles_near(b, i, state);
+    ctx.movers = moving_teammates(b, i, state);
     track.analysis = cached_analysis(ctx, i, state, track);
     outcome_.subsystems += 1;
     record_path_separations(b, i);
@@ -469,6 +473,15 @@ class Sequencer {
     for (const Segment& g : ctx.obstacles) {
       for (const double v : {g.x0, g.y0, g.x1, g.y1}) put(v);
     }
+    // Moving teammates are a pose per cycle each: two independent 64-bit
+    // hashes of them rather than their bytes (a key of up to tens of
+    // kilobytes per entry), so a wrong hit needs a 128-bit collision.
+    if (ctx.movers && !ctx.movers->empty()) {
+      key.push_back('|');
+      const auto [h1, h2] = ctx.movers->fingerprint();
+      key.append(reinterpret_cast<const char*>(&h1), sizeof h1);
+      key.append(reinterpret_cast<const char*>(&h2), sizeof h2);
+    }
     const auto it = analysis_cache_.find(key);
     if (it != analysis_cache_.end()) return it->second;
     StateAnalysis a = analyze_state(ctx, state, track.base, track.error, track.start_points);
@@ -492,8 +505,9 @@ class Sequencer {
       // A teammate driving a GoToGuarded leg is not where its leg began for
       // long: pinning its body there would block a robot headed for the spot
       // it just left (a hand-over at a waypoint) for the whole state. Only
-      // teammates that hold still (Stop, Notify, Spin, finished) are obstacles;
-      // two moving robots passing each other is the approximation left.
+      // teammates that hold still (Stop, Notify, Spin, finished) are fixed
+      // obstacles; driving ones move along their predicted paths
+      // (moving_teammates).
       if (!b.robots[j].final &&
           std::holds_alternative<mission::GoToGuardedParams>(mission_.robots[j].states[b.robots[j].state].behavior)) {
         continue;
@@ -504,6 +518,163 @@ class Sequencer {
     }
     const Eigen::Vector2d from = me.true_mean();
     return segments_near(all, from.x(), from.y(), gx, gy, models_.environment.sonar_max_range_m + 1.0);
+  }
+
+  /// The teammates driving a GoToGuarded leg when robot i enters `state`
+  /// (a GoToGuarded; nothing else steers around obstacles), each as a body
+  /// following its predicted mean true path over i's cycles, standing where
+  /// its leg ends while it holds still after, and on along its next leg when
+  /// the states in between lead there by their own triggers (predicted ahead
+  /// from where the current leg ends: look_ahead) (engine/moving_bodies.hpp).
+  /// One-way: each teammate's path was predicted without robot i. Null when
+  /// none comes within sonar range of i's way (as obstacles_near filters).
+  std::shared_ptr<const MovingBodies> moving_teammates(const BranchState& b, std::size_t i, std::size_t state) {
+    const auto* go = std::get_if<mission::GoToGuardedParams>(&mission_.robots[i].states[state].behavior);
+    if (go == nullptr) return nullptr;
+    const Eigen::Vector2d from = b.robots[i].true_mean();
+    const double reach = models_.environment.sonar_max_range_m + 1.0;
+    auto bodies = std::make_shared<MovingBodies>();
+    for (std::size_t j = 0; j < b.robots.size(); ++j) {
+      const Track& tj = b.robots[j];
+      const mission::RobotSpec& spec = mission_.robots[j];
+      if (j == i || tj.final || !std::holds_alternative<mission::GoToGuardedParams>(spec.states[tj.state].behavior)) {
+        continue;
+      }
+      // Not entered yet (robots enter their first state in file order at
+      // launch): nothing is known of its leg, so it is left out as before.
+      if (tj.analysis.path.empty()) continue;
+      std::vector<TeammateLeg> legs(1);
+      TeammateLeg& leg = legs[0];
+      leg.path = &tj.analysis.path;
+      leg.start = tj.base;
+      leg.end = tj.analysis.end;
+      leg.error_start = tj.error.mean;
+      leg.error_end = tj.analysis.error.mean;
+      leg.entered_s = -std::max(0.0, b.clock.mean() - tj.entry_clock.mean());
+      // The leg's own exit in this branch (the branch was split by which
+      // exit fires, so there is at most one pending self-timed exit) and
+      // where it leads. A Notified exit may take it out earlier: not followed.
+      StillChain after;
+      for (const Pending& p : tj.pending) {
+        const mission::Transition& tr = spec.transitions[p.transition];
+        if (std::holds_alternative<mission::NotifiedParams>(tr.trigger)) continue;
+        leg.ends_in_s = std::max(0.0, p.residual.mean());
+        after = still_after(j, tr.to);
+        leg.still_for_s = after.seconds;
+        break;
+      }
+      std::shared_ptr<const StateAnalysis> next;
+      if (std::isfinite(leg.ends_in_s) && after.leg) {
+        BaseState start = tj.analysis.end;
+        start.theta_rad += after.turn_rad;
+        start.trans_mps = start.rot_radps = 0.0;  // the still states in between brake
+        next = look_ahead(j, *after.leg, start, tj.analysis.error);
+        if (next && !next->path.empty()) {
+          TeammateLeg ahead;
+          ahead.path = &next->path;
+          ahead.start = start;
+          ahead.end = next->end;
+          ahead.error_start = tj.analysis.error.mean;
+          ahead.error_end = next->error.mean;
+          ahead.entered_s = leg.ends_in_s + leg.still_for_s;
+          double mass = 0.0, mean = 0.0, best = 0.0;
+          std::size_t to = 0;
+          for (const TimedExit& e : next->exits) {
+            mass += e.probability;
+            mean += e.probability * e.duration_s.mean();
+            if (e.probability > best) {
+              best = e.probability;
+              to = spec.transitions[e.transition].to;
+            }
+          }
+          if (mass > 0.0) {
+            ahead.ends_in_s = ahead.entered_s + mean / mass;
+            // Where it holds still after, and for how long; a third leg is
+            // not predicted (it drops out when it would drive on).
+            ahead.still_for_s = still_after(j, to).seconds;
+          }
+          legs.push_back(ahead);
+        }
+      }
+      MovingBody body = follow_legs(legs, cycle_s(i));
+      if (passes_near(body, from.x(), from.y(), go->goal.x_m, go->goal.y_m, reach)) bodies->add(std::move(body));
+    }
+    if (bodies->empty()) return nullptr;
+    return bodies;
+  }
+
+  /// What robot j does from entering `state` until it drives again.
+  struct StillChain {
+    /// How long it holds still (mean): 0 when `state` is a leg; infinity when
+    /// it stays for good as far as its own timing goes (a final state, or one
+    /// left only on a message); else the expected length of the still states
+    /// it goes through by their own triggers (a Notify's acknowledgement, a
+    /// Spin's turn).
+    double seconds = std::numeric_limits<double>::infinity();
+    std::optional<std::size_t> leg;  ///< the leg it then drives (when seconds is finite)
+    double turn_rad = 0.0;           ///< the Spins' turns on the way (odometric, signed)
+  };
+  StillChain still_after(std::size_t j, std::size_t state) const {
+    constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+    const mission::RobotSpec& spec = mission_.robots[j];
+    const Kinematics& kin = robot_models_[j]->kinematics;
+    StillChain chain;
+    double total = 0.0;
+    for (std::size_t hops = 0; hops < spec.states.size(); ++hops) {
+      const mission::BehaviorParams& behavior = spec.states[state].behavior;
+      if (std::holds_alternative<mission::GoToGuardedParams>(behavior)) {
+        chain.seconds = total;
+        chain.leg = state;
+        return chain;
+      }
+      if (spec.is_final(state)) break;
+      // The state's own exit, if it has one (file order: the executive's).
+      std::optional<std::size_t> next;
+      for (const std::size_t t : spec.states[state].outgoing) {
+        const mission::TriggerParams& trigger = spec.transitions[t].trigger;
+        if (std::holds_alternative<mission::MessageSentParams>(trigger)) {
+          total += delay_in_cycles(models_.comm.ack_s, kin.cycle_s, k()).mean();
+        } else if (const auto* h = std::get_if<mission::HasTurnedParams>(&trigger)) {
+          const auto* spin = std::get_if<mission::SpinParams>(&behavior);
+          const double rate = std::min(std::abs(spin ? spin->rate_deg_s : 0.0) * kDegToRad, kin.max_rot_vel_radps);
+          if (!(rate > 0.0)) break;
+          const double angle = (h->angle_deg - h->offset_deg) * kDegToRad;
+          total += angle / rate + rate / kin.rot_accel_radps2;
+          chain.turn_rad += spin->rate_deg_s < 0.0 ? -angle : angle;
+        } else {
+          continue;
+        }
+        next = spec.transitions[t].to;
+        break;
+      }
+      if (!next) break;
+      state = *next;
+    }
+    chain.seconds = std::numeric_limits<double>::infinity();
+    chain.leg.reset();
+    return chain;
+  }
+
+  /// Robot j's leg `state` predicted ahead from `start`, for the teammates
+  /// that will meet it there (moving_teammates): the state analysis with the
+  /// walls only (who else stands where by then is not known), cached, since
+  /// every robot entering a state during j's current leg asks for the same
+  /// one. Its cycles count toward the work budget.
+  std::shared_ptr<const StateAnalysis> look_ahead(std::size_t j, std::size_t state, const BaseState& start,
+                                                  const ErrorState& error) {
+    const auto key = std::make_tuple(j, state, start.x_m, start.y_m, start.theta_rad);
+    if (const auto it = look_ahead_cache_.find(key); it != look_ahead_cache_.end()) return it->second;
+    const auto& go = std::get<mission::GoToGuardedParams>(mission_.robots[j].states[state].behavior);
+    StateContext ctx;
+    ctx.robot = &mission_.robots[j];
+    ctx.model = robot_models_[j];
+    ctx.models = &models_;
+    ctx.obstacles = segments_near(walls_, start.x_m + error.mean(0), start.y_m + error.mean(1), go.goal.x_m, go.goal.y_m,
+                                  models_.environment.sonar_max_range_m + 1.0);
+    auto a = std::make_shared<const StateAnalysis>(analyze_state(ctx, state, start, error));
+    outcome_.work_cycles += a->cycles_simulated;
+    look_ahead_cache_.emplace(key, a);
+    return a;
   }
 
   /// A Notify of message m: robots already waiting for it now have a pending exit.
@@ -1060,6 +1231,8 @@ class Sequencer {
   bool record_entries_ = false;
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
   std::size_t entering_ = kNone;
+  std::map<std::tuple<std::size_t, std::size_t, double, double, double>, std::shared_ptr<const StateAnalysis>>
+      look_ahead_cache_;  ///< look_ahead's predictions
   std::set<std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>> legs_seen_;  ///< concurrent_legs' keys  ///< while the initial states are entered: the robot entering
   std::map<std::pair<std::size_t, std::size_t>, ErrorState> entry_errors_;
   static constexpr std::size_t kMaxCachedAnalyses = 2048;

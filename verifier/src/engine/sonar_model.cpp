@@ -8,9 +8,8 @@ namespace p3at::verifier::engine {
 namespace {
 
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
-// The P3-AT's footprint (626 x 505 mm), as the simulator and the bridge use it.
-constexpr double kHalfLengthM = 0.313;
-constexpr double kHalfWidthM = 0.2525;
+constexpr double kHalfLengthM = kBodyHalfLengthM;
+constexpr double kHalfWidthM = kBodyHalfWidthM;
 
 double point_segment_distance(double px, double py, const Segment& s) {
   const double dx = s.x1 - s.x0, dy = s.y1 - s.y0;

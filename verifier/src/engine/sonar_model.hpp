@@ -17,6 +17,10 @@ struct Segment {
   double x0, y0, x1, y1;
 };
 
+/// The P3-AT's footprint (626 x 505 mm), as the simulator and the bridge use it.
+inline constexpr double kBodyHalfLengthM = 0.313;
+inline constexpr double kBodyHalfWidthM = 0.2525;
+
 /// The segments a robot can see while it moves around `from`..`to` (walls and
 /// bodies within sonar range of that stretch), so each ray tests few segments.
 std::vector<Segment> segments_near(const std::vector<Segment>& all, double from_x, double from_y, double to_x,

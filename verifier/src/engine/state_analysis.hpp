@@ -91,12 +91,17 @@ struct StateAnalysis {
   std::shared_ptr<const LegTrajectory> trajectory;
 };
 
+class MovingBodies;  // engine/moving_bodies.hpp
+
 /// What a state's evaluation needs to know about the rest of the system.
 struct StateContext {
   const mission::RobotSpec* robot = nullptr;
   const RobotModel* model = nullptr;
   const Models* models = nullptr;
-  std::vector<Segment> obstacles;     ///< walls plus the teammates' bodies now
+  std::vector<Segment> obstacles;     ///< walls plus the bodies of teammates that hold still
+  /// Teammates driving a leg, as bodies that move with the state's cycles
+  /// (engine/moving_bodies.hpp); null when none comes near.
+  std::shared_ptr<const MovingBodies> movers;
 };
 
 /// Evaluates state `state_index` of the robot, entered with odometric base
