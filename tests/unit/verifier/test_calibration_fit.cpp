@@ -74,6 +74,12 @@ class SyntheticRobot {
   SyntheticRobot(std::string name, Kinematics k, MotionError e, std::uint64_t seed)
       : name_(std::move(name)), k_(k), e_(e), normal_(seed) {}
 
+  // Like the simulator (docs/simulator.md): the relative random error is in
+  // the odometry, each cycle's odometric increments the true ones times
+  // (1 + N(0, rel_var)), and the odometry is reported as ARCOS does, positions
+  // in whole millimetres and the heading in 1/4096 of a turn.
+  void like_the_simulator() { simulator_ = true; }
+
   // Drives until the odometric distance (or turn) reaches `amount`, then
   // commands zero and waits for rest: one manoeuvre, one row per cycle.
   Manoeuvre run(ManoeuvreKind kind, double command, double amount, bool truth_every_row) {
@@ -92,9 +98,10 @@ class SyntheticRobot {
       row.t_s = t_;
       row.cmd_trans_mps = kind == ManoeuvreKind::straight ? cmd : 0.0;
       row.cmd_rot_radps = kind == ManoeuvreKind::spin ? cmd : 0.0;
-      row.odom_x_m = odo_x_;
-      row.odom_y_m = odo_y_;
-      row.odom_theta_rad = std::remainder(odo_th_, 2.0 * std::numbers::pi);  // a robot reports it wrapped
+      row.odom_x_m = reported(odo_x_, 0.001);
+      row.odom_y_m = reported(odo_y_, 0.001);
+      // A robot reports the heading wrapped.
+      row.odom_theta_rad = std::remainder(reported(odo_th_, 2.0 * std::numbers::pi / 4096.0), 2.0 * std::numbers::pi);
       if (truth_every_row || cycle == 0 || resting) row.truth = TruePose{x_, y_, std::remainder(th_, 2.0 * std::numbers::pi)};
       m.rows.push_back(row);
       if (resting) break;
@@ -104,6 +111,8 @@ class SyntheticRobot {
   }
 
  private:
+  double reported(double v, double unit) const { return simulator_ ? std::round(v / unit) * unit : v; }
+
   static double ramp(double current, double wanted, double accel, double decel, double dt) {
     const bool up = std::abs(wanted) > std::abs(current) && current * wanted >= 0.0;
     const double rate = (up ? accel : decel) * dt;
@@ -113,24 +122,29 @@ class SyntheticRobot {
   void step(double cmd_v, double cmd_w) {
     const double dt = k_.cycle_s / 10.0;
     const double want_w = std::clamp(cmd_w, -k_.max_rot_vel_radps, k_.max_rot_vel_radps);
+    // The simulator's odometric error factors of this cycle.
+    const double odo_s = simulator_ ? 1.0 + std::sqrt(e_.trans_rel_var) * normal_() : 1.0;
+    const double odo_th = simulator_ ? 1.0 + std::sqrt(e_.rot_rel_var) * normal_() : 1.0;
     double ds = 0.0;
     double dth = 0.0;
     for (int i = 0; i < 10; ++i) {
       v_ = ramp(v_, cmd_v, k_.trans_accel_mps2, k_.trans_decel_mps2, dt);
       w_ = ramp(w_, want_w, k_.rot_accel_radps2, k_.rot_decel_radps2, dt);
-      const double mid = odo_th_ + w_ * dt / 2.0;
-      odo_x_ += v_ * dt * std::cos(mid);
-      odo_y_ += v_ * dt * std::sin(mid);
-      odo_th_ += w_ * dt;
+      const double mid = odo_th_ + w_ * dt * odo_th / 2.0;
+      odo_x_ += v_ * dt * odo_s * std::cos(mid);
+      odo_y_ += v_ * dt * odo_s * std::sin(mid);
+      odo_th_ += w_ * dt * odo_th;
       ds += v_ * dt;
       dth += w_ * dt;
     }
     if (std::abs(v_) < 1e-12) v_ = 0.0;
     if (std::abs(w_) < 1e-12) w_ = 0.0;
-    // The true motion of this cycle, by the model's equations.
-    const double sd_s = std::sqrt(e_.trans_var_per_m * std::abs(ds) + e_.trans_rel_var * ds * ds);
+    // The true motion of this cycle, by the model's equations (the relative
+    // terms are in the odometry when like the simulator).
+    const double rel = simulator_ ? 0.0 : 1.0;
+    const double sd_s = std::sqrt(e_.trans_var_per_m * std::abs(ds) + rel * e_.trans_rel_var * ds * ds);
     const double sd_th = std::sqrt(e_.rot_var_per_rad * std::abs(dth) + e_.heading_var_per_m * std::abs(ds) +
-                                   e_.rot_rel_var * dth * dth);
+                                   rel * e_.rot_rel_var * dth * dth);
     const double true_ds = e_.trans_scale * ds + sd_s * normal_();
     const double true_dth = e_.rot_scale * dth + e_.drift_rad_per_m * ds + sd_th * normal_();
     const double mid = th_ + true_dth / 2.0;
@@ -144,6 +158,7 @@ class SyntheticRobot {
   Kinematics k_;
   MotionError e_;
   Normal normal_;
+  bool simulator_ = false;
   std::int64_t next_id_ = 0;
   double t_ = 0.0;
   double v_ = 0.0, w_ = 0.0;
@@ -174,6 +189,16 @@ Kinematics p3at_kinematics() {
   k.rot_decel_radps2 = 120.0 * kDeg;
   return k;
 }
+
+// The per-unit term's share of one cycle's random variance at increment z
+// (the plan's cruise: 0.3 m/s and 40 deg/s give 0.03 m and 0.0698 rad).
+double unit_share(double var_per_unit, double rel_var, double z) {
+  const double unit = var_per_unit * z;
+  const double total = unit + rel_var * z * z;
+  return total > 0.0 ? unit / total : 0.0;
+}
+constexpr double kCruiseDs = 0.03;
+constexpr double kCruiseDth = 40.0 * kDeg * 0.1;
 
 const ParameterFit& fit_of(const CalibrationResult& r, std::size_t robot, const std::string& name) {
   for (const ParameterFit& f : r.robots.at(robot).fits) {
@@ -213,9 +238,10 @@ TEST_CASE("relative (per-cycle) errors: every parameter comes back, and the rela
   CHECK(std::abs(e.rot_scale - truth.rot_scale) < 4.0 * fit_of(r, 0, "rot_scale").std_error);
   CHECK(std::abs(e.drift_rad_per_m / kDeg - 0.5) < 4.0 * fit_of(r, 0, "drift_deg_per_m").std_error);
   CHECK(fit_of(r, 0, "drift_deg_per_m").std_error < 0.02);
-  // The random part, in the form it was generated in.
-  CHECK(e.trans_var_per_m == 0.0);
-  CHECK(e.rot_var_per_rad == 0.0);
+  // The random part, in the form it was generated in (both terms are
+  // fitted; the per-unit one the data does not support stays at, or near, 0).
+  CHECK(unit_share(e.trans_var_per_m, e.trans_rel_var, kCruiseDs) < 0.05);
+  CHECK(unit_share(e.rot_var_per_rad, e.rot_rel_var, kCruiseDth) < 0.05);
   CHECK(std::sqrt(e.trans_rel_var) == near(0.03, 0.15));
   CHECK(std::sqrt(e.rot_rel_var) == near(0.04, 0.15));
   CHECK(std::sqrt(e.heading_var_per_m) == near(0.002, 0.2));
@@ -230,7 +256,7 @@ TEST_CASE("relative (per-cycle) errors: every parameter comes back, and the rela
   CHECK(got.robot_radius_m == Kinematics{}.robot_radius_m);  // the executive's, not measurable here
 }
 
-TEST_CASE("per-unit errors: the per-unit forms are chosen and come back") {
+TEST_CASE("per-unit errors: the per-unit terms come back") {
   MotionError truth;
   truth.trans_scale = 1.02;
   truth.rot_scale = 0.95;
@@ -245,16 +271,76 @@ TEST_CASE("per-unit errors: the per-unit forms are chosen and come back") {
   const MotionError& e = r.robots[0].model.motion;
   CHECK(e.trans_scale == near(1.02, 0.002));
   CHECK(e.rot_scale == near(0.95, 0.002));
-  CHECK(e.trans_rel_var == 0.0);
-  CHECK(e.rot_rel_var == 0.0);
+  CHECK(unit_share(e.trans_var_per_m, e.trans_rel_var, kCruiseDs) > 0.95);
+  CHECK(unit_share(e.rot_var_per_rad, e.rot_rel_var, kCruiseDth) > 0.95);
   CHECK(std::sqrt(e.trans_var_per_m) == near(0.01, 0.15));
   CHECK(std::sqrt(e.rot_var_per_rad) == near(0.02, 0.15));
   CHECK(std::abs(e.drift_rad_per_m) <= 4.0 * fit_of(r, 0, "drift_deg_per_m").std_error * kDeg);
   CHECK(e.heading_var_per_m < 1e-12);  // none generated
-  // Every row has a true pose: the form is decided on single cycles, decisively.
-  CHECK(fit_of(r, 0, "trans_sd_per_sqrt_m").note.find("per-unit form") != std::string::npos);
+  // Every row has a true pose: both terms are fitted on single cycles, and
+  // the report says how much each one explains.
+  CHECK(fit_of(r, 0, "trans_sd_per_sqrt_m").note.find("joint fit over") != std::string::npos);
   CHECK(fit_of(r, 0, "trans_sd_per_sqrt_m").note.find("single cycles") != std::string::npos);
-  CHECK(fit_of(r, 0, "rot_sd_per_sqrt_rad").note.find("single cycles") != std::string::npos);
+  CHECK(fit_of(r, 0, "rot_rel_sd").note.find("% of these runs' variance") != std::string::npos);
+}
+
+TEST_CASE("per-unit errors through odometry counts (mm, 1/4096 turn): the per-unit terms still come back") {
+  // The counts put a noise on every odometric reading, which adds to a
+  // cycle's increment and cancels over a manoeuvre. Taken for an independent
+  // floor under each cycle it bent the old choice of form; this one is a
+  // per-unit error of the simulator's size (1.35 % of a cruise cycle's
+  // increment), a little below the counts' own noise per cycle.
+  MotionError truth;
+  truth.trans_var_per_m = 0.0135 * 0.0135 * kCruiseDs;
+  truth.rot_var_per_rad = 0.0135 * 0.0135 * kCruiseDth;
+  SyntheticRobot robot("iota", p3at_kinematics(), truth, 4242);
+  robot.like_the_simulator();
+  CalibrationLog log;
+  drive_plan(robot, log, 60, true);
+  CHECK(log.manoeuvres[0].rows[5].odom_x_m * 1000.0 == near(std::round(log.manoeuvres[0].rows[5].odom_x_m * 1000.0), 1e-9));
+
+  const CalibrationResult r = p3at::verifier::calibrate(log);
+  const MotionError& e = r.robots[0].model.motion;
+  // Over 40 seeds of 20 runs the per-unit share at cruise was at least 0.78
+  // (rotation) and 1.0 (translation); with 60 runs it is tighter.
+  CHECK(unit_share(e.trans_var_per_m, e.trans_rel_var, kCruiseDs) > 0.8);
+  CHECK(unit_share(e.rot_var_per_rad, e.rot_rel_var, kCruiseDth) > 0.8);
+  // The level: within 3 standard errors of an sd from 120 straights (6.5 %)
+  // and 180 spins (5.3 %) of the per-unit sd, with room for the share.
+  CHECK(std::sqrt(e.trans_var_per_m / truth.trans_var_per_m) == near(1.0, 0.2));
+  CHECK(std::sqrt(e.rot_var_per_rad / truth.rot_var_per_rad) == near(1.0, 0.2));
+}
+
+TEST_CASE("odometry counts at a near-whole number of counts per cycle: the single cycles are rejected, not believed") {
+  // Mission gen_1008's robot4: spins at 23 and 11.5 deg/s turn 26.17 and
+  // 13.08 counts (of 4096 a turn) a cycle, and a relative error of 0.005 is
+  // 0.07 to 0.13 of a count: the rounding then drifts slowly from reading to
+  // reading, the increments come out as 13, 13, ..., 14, and the Gaussian
+  // model of the single cycles does not hold (the joint fit on them found a
+  // per-unit error, decisively). Its residuals' kurtosis gives it away: the
+  // split is then decided on the runs, and the report says why.
+  MotionError truth;
+  truth.trans_rel_var = 0.018 * 0.018;
+  truth.rot_rel_var = 0.005 * 0.005;
+  SyntheticRobot robot("kappa", p3at_kinematics(), truth, 1008);
+  robot.like_the_simulator();
+  CalibrationLog log;
+  for (int i = 0; i < 20; ++i) {
+    log.manoeuvres.push_back(robot.run(ManoeuvreKind::straight, 0.35, 4.0, true));
+    log.manoeuvres.push_back(robot.run(ManoeuvreKind::spin, 23.0 * kDeg, std::numbers::pi, true));
+    log.manoeuvres.push_back(robot.run(ManoeuvreKind::straight, 0.175, 4.0, true));
+    log.manoeuvres.push_back(robot.run(ManoeuvreKind::spin, -11.5 * kDeg, std::numbers::pi, true));
+    log.manoeuvres.push_back(robot.run(ManoeuvreKind::spin, 120.0 * kDeg, std::numbers::pi, true));
+    log.manoeuvres.push_back(robot.run(ManoeuvreKind::spin, -120.0 * kDeg, std::numbers::pi, true));
+  }
+  const CalibrationResult r = p3at::verifier::calibrate(log);
+  const std::string rot_notes = fit_of(r, 0, "rot_sd_per_sqrt_rad").note + fit_of(r, 0, "rot_rel_sd").note;
+  CHECK(rot_notes.find("the single cycles are off their model (kurtosis") != std::string::npos);
+  CHECK(rot_notes.find("form: log-likelihood") != std::string::npos);
+  CHECK(rot_notes.find("over the runs") != std::string::npos);
+  // The straights' cycles (0.035 and 0.0175 m a cycle against 1 mm counts,
+  // an error of 0.3 to 0.6 of a count) are fine.
+  CHECK(fit_of(r, 0, "trans_rel_sd").note.find("joint fit over") != std::string::npos);
 }
 
 TEST_CASE("a tape-measure log (true poses only at each manoeuvre's ends) gives the same fit as full truth") {
@@ -270,7 +356,24 @@ TEST_CASE("a tape-measure log (true poses only at each manoeuvre's ends) gives t
   drive_plan(full_robot, full, 10, true);
   drive_plan(ends_robot, ends, 10, false);
   CHECK(ends.manoeuvres.front().rows[1].truth == std::nullopt);
-  CHECK(p3at::verifier::calibrate(full).robots[0].model == p3at::verifier::calibrate(ends).robots[0].model);
+  const p3at::verifier::RobotModel a = p3at::verifier::calibrate(full).robots[0].model;
+  const p3at::verifier::RobotModel b = p3at::verifier::calibrate(ends).robots[0].model;
+  CHECK(a.kinematics == b.kinematics);
+  // The ends alone choose the relative form; full truth fits both terms on
+  // single cycles and finds (almost) only the relative one. The level comes
+  // from the same runs either way.
+  CHECK(b.motion.trans_var_per_m == 0.0);
+  CHECK(b.motion.rot_var_per_rad == 0.0);
+  CHECK(unit_share(a.motion.trans_var_per_m, a.motion.trans_rel_var, kCruiseDs) < 0.05);
+  CHECK(unit_share(a.motion.rot_var_per_rad, a.motion.rot_rel_var, kCruiseDth) < 0.05);
+  CHECK(a.motion.trans_scale == near(b.motion.trans_scale, 1e-3));
+  CHECK(a.motion.rot_scale == near(b.motion.rot_scale, 1e-3));
+  const auto cruise_var = [](const MotionError& e, bool rot) {
+    return rot ? e.rot_var_per_rad * kCruiseDth + e.rot_rel_var * kCruiseDth * kCruiseDth
+               : e.trans_var_per_m * kCruiseDs + e.trans_rel_var * kCruiseDs * kCruiseDs;
+  };
+  CHECK(cruise_var(a.motion, false) == near(cruise_var(b.motion, false), 0.1));
+  CHECK(cruise_var(a.motion, true) == near(cruise_var(b.motion, true), 0.1));
 }
 
 TEST_CASE("only each manoeuvre's first and last rows: per-unit forms, and the kinematics keep their defaults") {

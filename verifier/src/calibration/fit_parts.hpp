@@ -45,25 +45,35 @@ struct Measure {
 Measure measure(const Manoeuvre& m);
 
 /// A scale and a variance fitted together: y = scale * x + e with
-/// var(e) = var_per_unit * L or var_relative * Q (one of the two forms, the
-/// one that explains the data better; see docs/calibration.md).
+/// var(e) = unit_var * L + rel_var * Q (L = sum|increment|, Q = sum
+/// increment^2 over the manoeuvre; see docs/calibration.md). With a true pose
+/// on every row both terms are fitted jointly; otherwise one of the two forms
+/// is chosen and the other is 0.
 struct ScaleFit {
   double scale = 1.0;
   double scale_se = 0.0;
-  double variance = 0.0;      ///< of the chosen form
-  double variance_se = 0.0;
-  bool relative = false;      ///< the per-cycle relative form was chosen
+  double unit_var = 0.0;      ///< per-unit term: variance per |increment|
+  double unit_var_se = 0.0;
+  double rel_var = 0.0;       ///< relative term: variance per increment^2
+  double rel_var_se = 0.0;
   double residual_rms = 0.0;  ///< of y - scale * x
-  std::string form_note;      ///< why this form
+  std::size_t unit_runs = 0;  ///< manoeuvres each term was fitted from (0: not fitted, held at 0)
+  std::size_t rel_runs = 0;
+  std::string unit_note;      ///< how each term came about
+  std::string rel_note;
+  /// The variance the fit gives a manoeuvre of these sums.
+  double variance(double length, double length_sq) const { return unit_var * length + rel_var * length_sq; }
 };
-/// Increments of single cycles, odometric and true, when every row has a true pose.
-struct CycleIncrements {
+/// Increments of single cycles, odometric and true, manoeuvre by manoeuvre,
+/// when every row has a true pose.
+struct CycleSeries {
   std::vector<double> odo;
   std::vector<double> truth;
 };
+using CycleIncrements = std::vector<CycleSeries>;
 /// `per_cycle`: Q is known (rows every cycle). `allow_relative`: the model has
-/// a relative term for it. `cycles`: when not empty, the form is decided on
-/// them instead of on the manoeuvres (far more observations).
+/// a relative term for it. `cycles`: when not empty, both terms are fitted
+/// jointly, their proportions on the single cycles (far more observations).
 ScaleFit fit_scale(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& length,
                    const std::vector<double>& length_sq, bool per_cycle, bool allow_relative,
                    const CycleIncrements& cycles = {});

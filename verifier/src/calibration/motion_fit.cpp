@@ -3,14 +3,15 @@
 //
 // Over a whole manoeuvre the per-cycle model adds up to
 //   true total = scale * odometric total + E,
-//   var(E) = var_per_unit * sum|increment|  or  rel_var * sum(increment^2),
+//   var(E) = var_per_unit * sum|increment| + rel_var * sum(increment^2),
 // so each manoeuvre is one observation (x = odometric total, y = true total)
 // of a regression through the origin whose residual variance is proportional
 // to a known length: weighted least squares gives the scale, the weighted
-// residuals the variance. Which of the two variance forms applies is decided
-// on single cycles when every row has a true pose (a ramp's small increments
-// against the cruise's large ones), else on the runs, which the driver makes
-// at two speeds: the form with the higher likelihood wins.
+// residuals the variance's level. How that variance splits between the two
+// terms is fitted on single cycles when every row has a true pose (both
+// terms jointly, by maximum likelihood, with the pose readings' own noise);
+// otherwise one form is chosen on the runs, which the driver makes at two
+// speeds.
 
 #include <algorithm>
 #include <cmath>
@@ -30,6 +31,14 @@ constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 // Below this spread of (sum of squares / sum of sizes) across runs, every run
 // went at about one speed and the two variance forms fit equally well.
 constexpr double kMinSpeedSpread = 1.5;
+// The single cycles' model is Gaussian: its standardised residuals have a
+// kurtosis of 3 (a standard error of sqrt(24 / n), under 0.1 for the
+// thousands of cycles of a calibration; odometry counts' uniform rounding
+// makes it a little less, 2.5 to 2.9 on the simulator). Far above, the data
+// are off the model (rare whole-count jumps: odometry counts at a near-whole
+// number of counts per cycle, below the motion's own error) and the split
+// is decided on the runs instead.
+constexpr double kMaxCycleKurtosis = 4.0;
 
 double weighted_scale(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& z) {
   double sxy = 0.0;
@@ -53,32 +62,164 @@ double log_likelihood(const std::vector<double>& x, const std::vector<double>& y
   return ll - n / 2.0;
 }
 
-// The best log-likelihood (constants dropped) of residuals whose variance is
-// s * (1 + rho * z_i), over s and rho >= 0: a floor (the measuring's own
-// noise: odometry counts, a motion-capture system's jitter) plus a term
-// growing with z. Profiled over rho on a grid fine enough to compare forms.
-double floor_plus_form_log_likelihood(const std::vector<double>& r2, const std::vector<double>& z) {
-  std::vector<double> positive;
-  for (double v : z) {
-    if (v > 0.0) positive.push_back(v);
-  }
-  if (positive.empty()) return -HUGE_VAL;
-  std::nth_element(positive.begin(), positive.begin() + static_cast<std::ptrdiff_t>(positive.size() / 2), positive.end());
-  const double z_mid = positive[positive.size() / 2];
-  const auto n = static_cast<double>(r2.size());
-  double best = -HUGE_VAL;
-  for (int step = -1; step <= 48; ++step) {
-    const double rho = step < 0 ? 0.0 : std::pow(10.0, -3.0 + 0.25 * step) / z_mid;
-    double s = 0.0;
-    double log_sum = 0.0;
-    for (std::size_t i = 0; i < r2.size(); ++i) {
-      const double f = 1.0 + rho * z[i];
-      s += r2[i] / f;
-      log_sum += std::log(f);
+// Single cycles of one manoeuvre: odometric increments z and residuals r
+// (true increment - scale * odometric increment).
+struct Segment {
+  std::vector<double> z;
+  std::vector<double> r;
+};
+
+// The per-cycle likelihood. Each cycle's residual is the motion's own error,
+// variance a |z| + b z^2, independent from cycle to cycle, plus the noise of
+// the two pose readings that bound the cycle: odometry counts (whole
+// millimetres, 1/4096 of a turn on a P3-AT) and a motion-capture system's
+// jitter sit on each reading, so they add 2 s2 to a cycle's variance and -s2
+// to the covariance of neighbouring cycles (a reading ends one cycle and
+// starts the next), and cancel over a manoeuvre. (Treated as an independent
+// floor under each cycle, that noise made the choice between the two forms
+// go wrong: per-unit for the simulator's relative error in most seeds of a
+// mid-range error; docs/calibration.md.)
+//
+// The covariance is level * (u A + w B + g T): A = |z| / mean|z|, B = z^2 /
+// mean z^2 (so u and w are the two terms' shares of the average cycle),
+// T = tridiag(-1, 2, -1) per manoeuvre; u + w + g = 1, each >= 0, the level
+// at its maximum-likelihood value. A tridiagonal LDL^T gives the likelihood
+// in O(cycles).
+class CycleLikelihood {
+ public:
+  explicit CycleLikelihood(std::vector<Segment> segments) : segments_(std::move(segments)) {
+    double s1 = 0.0;
+    double s2 = 0.0;
+    for (const Segment& s : segments_) {
+      for (double z : s.z) {
+        s1 += std::abs(z);
+        s2 += z * z;
+        ++n_;
+      }
     }
-    s = std::max(s / n, 1e-300);
-    best = std::max(best, -0.5 * (n * std::log(s) + log_sum));
+    mean_abs_ = n_ > 0 ? s1 / static_cast<double>(n_) : 0.0;
+    mean_sq_ = n_ > 0 ? s2 / static_cast<double>(n_) : 0.0;
   }
+
+  std::size_t cycles() const { return n_; }
+  double mean_abs() const { return mean_abs_; }
+  double mean_sq() const { return mean_sq_; }
+
+  // The log-likelihood (constants dropped) at shares (u, w, g), the level profiled out.
+  double operator()(double u, double w, double g, double* level = nullptr) const {
+    double quad = 0.0;
+    double log_det = 0.0;
+    const bool ok = innovations(u, w, g, [&](double y, double d) {
+      quad += y * y / d;
+      log_det += std::log(d);
+    });
+    if (!ok) return -HUGE_VAL;
+    const auto n = static_cast<double>(n_);
+    const double c = std::max(quad / n, 1e-300);
+    if (level) *level = c;
+    return -0.5 * (n * std::log(c) + log_det + n);
+  }
+
+  // The kurtosis of the standardised residuals (the innovations y / sqrt(d)
+  // of the LDL^T factorisation, independent N(0, level) under the model): 3
+  // for Gaussian data.
+  double kurtosis(double u, double w, double g) const {
+    double m2 = 0.0;
+    double m4 = 0.0;
+    const bool ok = innovations(u, w, g, [&](double y, double d) {
+      const double e2 = y * y / d;
+      m2 += e2;
+      m4 += e2 * e2;
+    });
+    if (!ok || !(m2 > 0.0)) return 0.0;
+    const auto n = static_cast<double>(n_);
+    return (m4 / n) / ((m2 / n) * (m2 / n));
+  }
+
+ private:
+  // Calls f(y, d) for each cycle's innovation y and its variance d (in units
+  // of the level) of the tridiagonal LDL^T; false if the covariance is singular.
+  template <class F>
+  bool innovations(double u, double w, double g, F&& f) const {
+    if (n_ == 0 || !(mean_abs_ > 0.0) || !(mean_sq_ > 0.0)) return false;
+    for (const Segment& s : segments_) {
+      double d_prev = 0.0;
+      double y_prev = 0.0;
+      for (std::size_t i = 0; i < s.z.size(); ++i) {
+        const double diag = u * std::abs(s.z[i]) / mean_abs_ + w * s.z[i] * s.z[i] / mean_sq_ + 2.0 * g;
+        double d = diag;
+        double y = s.r[i];
+        if (i > 0) {
+          const double l = -g / d_prev;
+          d = diag - l * l * d_prev;
+          y = s.r[i] - l * y_prev;
+        }
+        if (!(d > 1e-300)) return false;
+        f(y, d);
+        d_prev = d;
+        y_prev = y;
+      }
+    }
+    return true;
+  }
+
+  std::vector<Segment> segments_;
+  std::size_t n_ = 0;
+  double mean_abs_ = 0.0;
+  double mean_sq_ = 0.0;
+};
+
+// Shares of the per-unit term, the relative term and the readings' noise.
+struct Shares {
+  double unit = 0.0;
+  double rel = 0.0;
+  double reading = 0.0;
+  double ll = -HUGE_VAL;
+};
+
+// The maximum-likelihood shares over the simplex u + w + g = 1, u, w, g >= 0,
+// with the terms not `use_unit` / `use_rel` held at 0: a grid, then a pattern
+// search that moves share between two terms (an edge of the simplex is
+// reached exactly, so a term the data does not support ends at 0).
+Shares best_shares(const CycleLikelihood& ll, bool use_unit, bool use_rel) {
+  constexpr int kGrid = 20;
+  Shares best;
+  for (int i = 0; i <= kGrid; ++i) {
+    for (int j = 0; i + j <= kGrid; ++j) {
+      const double u = use_unit ? i / static_cast<double>(kGrid) : 0.0;
+      const double w = use_rel ? j / static_cast<double>(kGrid) : 0.0;
+      if ((!use_unit && i > 0) || (!use_rel && j > 0)) continue;
+      const double g = std::max(0.0, 1.0 - u - w);
+      const double v = ll(u, w, g);
+      if (v > best.ll) best = {u, w, g, v};
+    }
+  }
+  if (!(best.ll > -HUGE_VAL)) return best;
+  const bool use[3] = {use_unit, use_rel, true};
+  for (double step = 0.5 / kGrid; step > 1e-6;) {
+    bool moved = false;
+    for (int to = 0; to < 3; ++to) {
+      for (int from = 0; from < 3; ++from) {
+        if (to == from || !use[to] || !use[from]) continue;
+        double p[3] = {best.unit, best.rel, best.reading};
+        const double amount = std::min(step, p[from]);
+        if (!(amount > 0.0)) continue;
+        p[from] -= amount;
+        p[to] += amount;
+        const double v = ll(p[0], p[1], p[2]);
+        if (v > best.ll + 1e-9) {
+          best = {p[0], p[1], p[2], v};
+          moved = true;
+        }
+      }
+    }
+    if (!moved) step /= 2.0;
+  }
+  // A share within the search's last steps of 0 is 0.
+  if (best.unit < 1e-5) best.unit = 0.0;
+  if (best.rel < 1e-5) best.rel = 0.0;
+  best.reading = std::max(0.0, 1.0 - best.unit - best.rel);
+  best.ll = ll(best.unit, best.rel, best.reading);
   return best;
 }
 
@@ -102,28 +243,67 @@ ScaleFit fit_scale(const std::vector<double>& x, const std::vector<double>& y, c
                    const CycleIncrements& cycles) {
   const std::size_t n = x.size();
   ScaleFit out;
-  if (!allow_relative) {
-    out.relative = false;
-  } else if (!cycles.odo.empty()) {
+  // Each manoeuvre's variance is level * (unit * L + rel * Q) + reading: the
+  // shape (unit, rel) from the cycles or the chosen form, the level from the
+  // manoeuvres' residuals, less the end readings' own noise.
+  double unit = 1.0;
+  double rel = 0.0;
+  double reading = 0.0;
+  const std::string chosen_away = "0: the other form was chosen";
+  bool split_on_cycles = false;
+  std::string why_not_cycles;  // when the cycles were tried and rejected
+  if (allow_relative && !cycles.empty()) {
     // Every cycle observed: the increments range from a ramp's first to the
-    // cruise's, which tells the forms apart far better than whole runs.
+    // cruise's, at two speeds, which tells the terms apart far better than
+    // whole runs. Cycles where neither the odometry nor the truth moved
+    // (the rest at a manoeuvre's end) carry nothing and are left out.
     const double k = weighted_scale(x, y, length);
-    std::vector<double> r2, unit, rel;
-    for (std::size_t i = 0; i < cycles.odo.size(); ++i) {
-      const double r = cycles.truth[i] - k * cycles.odo[i];
-      r2.push_back(r * r);
-      unit.push_back(std::abs(cycles.odo[i]));
-      rel.push_back(cycles.odo[i] * cycles.odo[i]);
+    std::vector<Segment> segments;
+    for (const CycleSeries& c : cycles) {
+      Segment s;
+      for (std::size_t i = 0; i < c.odo.size() && i < c.truth.size(); ++i) {
+        if (c.odo[i] == 0.0 && c.truth[i] == 0.0) continue;
+        s.z.push_back(c.odo[i]);
+        s.r.push_back(c.truth[i] - k * c.odo[i]);
+      }
+      if (!s.z.empty()) segments.push_back(std::move(s));
     }
-    const double ll_unit = floor_plus_form_log_likelihood(r2, unit);
-    const double ll_rel = floor_plus_form_log_likelihood(r2, rel);
-    out.relative = ll_rel >= ll_unit;
-    out.form_note = std::string(out.relative ? "relative" : "per-unit") + " form: log-likelihood " +
-                    format_fixed(std::abs(ll_rel - ll_unit), 1) + " above the " + (out.relative ? "per-unit" : "relative") +
-                    " form's over " + std::to_string(cycles.odo.size()) + " single cycles";
+    const CycleLikelihood ll(std::move(segments));
+    const Shares joint = best_shares(ll, true, true);
+    const double kurtosis = joint.ll > -HUGE_VAL ? ll.kurtosis(joint.unit, joint.rel, joint.reading) : 0.0;
+    if (!(joint.ll > -HUGE_VAL)) {
+      why_not_cycles = "the single cycles could not be fitted; ";
+    } else if (kurtosis > kMaxCycleKurtosis) {
+      why_not_cycles = "the single cycles are off their model (kurtosis " + format_fixed(kurtosis, 1) + " of " +
+                       std::to_string(ll.cycles()) + " standardised residuals); ";
+    } else {
+      split_on_cycles = true;
+      const Shares unit_only = best_shares(ll, true, false);
+      const Shares rel_only = best_shares(ll, false, true);
+      double level = 0.0;
+      (void)ll(joint.unit, joint.rel, joint.reading, &level);
+      unit = level * joint.unit / ll.mean_abs();
+      rel = level * joint.rel / ll.mean_sq();
+      reading = level * joint.reading;
+      if (!(unit + rel > 0.0)) rel = 1.0;  // nothing beyond the readings' noise: the level decides
+      const std::string over =
+          " over " + std::to_string(ll.cycles()) + " single cycles (kurtosis " + format_fixed(kurtosis, 1) + ")";
+      out.unit_note = "joint fit" + over + "; without it log-likelihood " +
+                      format_fixed(joint.ll - rel_only.ll, 1) + " lower";
+      out.rel_note = "joint fit" + over + "; without it log-likelihood " + format_fixed(joint.ll - unit_only.ll, 1) +
+                     " lower";
+      out.unit_runs = n;
+      out.rel_runs = n;
+    }
+  }
+  if (split_on_cycles) {
+    // done above
+  } else if (!allow_relative) {
+    unit = 1.0;
   } else if (!per_cycle) {
-    out.relative = false;
-    out.form_note = "per-unit form: the log has no per-cycle rows to tell the forms apart";
+    out.unit_note = "per-unit form: the log has no per-cycle rows to tell the forms apart";
+    out.rel_note = chosen_away;
+    out.unit_runs = n;
   } else {
     double lo = HUGE_VAL;
     double hi = 0.0;
@@ -131,34 +311,58 @@ ScaleFit fit_scale(const std::vector<double>& x, const std::vector<double>& y, c
       lo = std::min(lo, length_sq[j] / length[j]);
       hi = std::max(hi, length_sq[j] / length[j]);
     }
+    bool relative = true;
+    std::string note;
     if (hi < kMinSpeedSpread * lo) {
-      out.relative = true;
-      out.form_note = "relative form: all runs at one speed cannot tell the forms apart";
+      note = "relative form: all runs at one speed cannot tell the forms apart";
     } else {
       const double ll_unit = log_likelihood(x, y, length, weighted_scale(x, y, length));
       const double ll_rel = log_likelihood(x, y, length_sq, weighted_scale(x, y, length_sq));
-      out.relative = ll_rel >= ll_unit;
-      out.form_note = std::string(out.relative ? "relative" : "per-unit") + " form: log-likelihood " +
-                      format_fixed(std::abs(ll_rel - ll_unit), 1) + " above the " + (out.relative ? "per-unit" : "relative") +
-                      " form's";
+      relative = ll_rel >= ll_unit;
+      note = std::string(relative ? "relative" : "per-unit") + " form: log-likelihood " +
+             format_fixed(std::abs(ll_rel - ll_unit), 1) + " above the " + (relative ? "per-unit" : "relative") +
+             " form's over the runs";
     }
+    unit = relative ? 0.0 : 1.0;
+    rel = relative ? 1.0 : 0.0;
+    (relative ? out.rel_note : out.unit_note) = why_not_cycles + note;
+    (relative ? out.unit_note : out.rel_note) = chosen_away;
+    (relative ? out.rel_runs : out.unit_runs) = n;
   }
-  const std::vector<double>& z = out.relative ? length_sq : length;
+  std::vector<double> z(n);
+  for (std::size_t j = 0; j < n; ++j) z[j] = unit * length[j] + rel * length_sq[j];
   out.scale = weighted_scale(x, y, z);
   double weighted_sq = 0.0;
   double sxx = 0.0;
   double sq = 0.0;
   for (std::size_t j = 0; j < n; ++j) {
     const double r = y[j] - out.scale * x[j];
-    weighted_sq += r * r / z[j];
+    weighted_sq += (r * r - 2.0 * reading) / z[j];
     sxx += x[j] * x[j] / z[j];
     sq += r * r;
   }
   const double dof = static_cast<double>(n > 1 ? n - 1 : 1);
-  out.variance = weighted_sq / dof;
-  out.variance_se = out.variance * std::sqrt(2.0 / dof);
-  out.scale_se = sxx > 0.0 ? std::sqrt(out.variance / sxx) : 0.0;
+  const double level = std::max(0.0, weighted_sq / dof);
+  out.unit_var = level * unit;
+  out.rel_var = level * rel;
+  out.unit_var_se = out.unit_var * std::sqrt(2.0 / dof);
+  out.rel_var_se = out.rel_var * std::sqrt(2.0 / dof);
+  out.scale_se = sxx > 0.0 ? std::sqrt(std::max(level, 1e-300) / sxx) : 0.0;
   out.residual_rms = std::sqrt(sq / static_cast<double>(n));
+  // Each term's share of these runs' variance, for the report.
+  double unit_total = 0.0;
+  double rel_total = 0.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    unit_total += out.unit_var * length[j];
+    rel_total += out.rel_var * length_sq[j];
+  }
+  if (split_on_cycles && unit_total + rel_total > 0.0) {
+    const auto share = [&](double part) {
+      return format_fixed(100.0 * part / (unit_total + rel_total), 1) + " % of these runs' variance, ";
+    };
+    out.unit_note = share(unit_total) + out.unit_note;
+    out.rel_note = share(rel_total) + out.rel_note;
+  }
   return out;
 }
 
@@ -171,10 +375,7 @@ MotionFit fit_motion(const std::vector<Measure>& straights, const std::vector<Me
     CycleIncrements c;
     const bool all = std::all_of(ms.begin(), ms.end(), [](const Measure& m) { return m.truth_every_row && m.cycles >= 3; });
     if (!all) return c;
-    for (const Measure& m : ms) {
-      c.odo.insert(c.odo.end(), m.cycle_odo.begin(), m.cycle_odo.end());
-      c.truth.insert(c.truth.end(), m.cycle_true.begin(), m.cycle_true.end());
-    }
+    for (const Measure& m : ms) c.push_back({m.cycle_odo, m.cycle_true});
     return c;
   };
   const CycleIncrements spin_cycles = cycles_of(spins);
@@ -216,42 +417,38 @@ MotionFit fit_motion(const std::vector<Measure>& straights, const std::vector<Me
   // odometric turns; what is left is the heading error per metre.
   double rot_part_per_m = 0.0;
   for (const Measure& m : straights) {
-    const double rot_var = rot.relative ? rot.variance * m.odo_rot_sq : rot.variance * m.odo_abs_rot_rad;
-    rot_part_per_m += rot_var / m.odo_abs_dist_m;
+    rot_part_per_m += rot.variance(m.odo_abs_rot_rad, m.odo_rot_sq) / m.odo_abs_dist_m;
   }
   rot_part_per_m /= static_cast<double>(straights.size());
-  const double heading_var = std::max(0.0, heading.variance - rot_part_per_m);
+  const double heading_var = std::max(0.0, heading.unit_var - rot_part_per_m);
 
   MotionFit out;
   MotionError& e = out.motion;
   e.trans_scale = trans.scale;
   e.rot_scale = rot.scale;
   e.drift_rad_per_m = drift;
-  e.trans_var_per_m = trans.relative ? 0.0 : trans.variance;
-  e.trans_rel_var = trans.relative ? trans.variance : 0.0;
-  e.rot_var_per_rad = rot.relative ? 0.0 : rot.variance;
-  e.rot_rel_var = rot.relative ? rot.variance : 0.0;
+  e.trans_var_per_m = trans.unit_var;
+  e.trans_rel_var = trans.rel_var;
+  e.rot_var_per_rad = rot.unit_var;
+  e.rot_rel_var = rot.rel_var;
   e.heading_var_per_m = heading_var;
 
   const std::size_t ns = straights.size();
   const std::size_t nr = spins.size();
   out.fits.push_back({"trans_scale", trans.scale, trans.scale_se, trans.residual_rms, "", "m", ns,
                       "true / odometric distance, straight runs"});
-  const std::string unused = "0: the other form was chosen";
-  add_sd(out.fits, "trans_sd_per_sqrt_m", e.trans_var_per_m, trans.relative ? 0.0 : trans.variance_se,
-         trans.relative ? 0 : ns, "m/sqrt(m)", trans.relative ? unused : trans.form_note);
-  add_sd(out.fits, "trans_rel_sd", e.trans_rel_var, trans.relative ? trans.variance_se : 0.0,
-         trans.relative ? ns : 0, "", trans.relative ? trans.form_note : unused);
+  add_sd(out.fits, "trans_sd_per_sqrt_m", trans.unit_var, trans.unit_var_se, trans.unit_runs, "m/sqrt(m)",
+         trans.unit_note);
+  add_sd(out.fits, "trans_rel_sd", trans.rel_var, trans.rel_var_se, trans.rel_runs, "", trans.rel_note);
   out.fits.push_back({"rot_scale", rot.scale, rot.scale_se, rot.residual_rms * kRadToDeg, "", "deg", nr,
                       "true / odometric rotation, spins"});
-  add_sd(out.fits, "rot_sd_per_sqrt_rad", e.rot_var_per_rad, rot.relative ? 0.0 : rot.variance_se,
-         rot.relative ? 0 : nr, "rad/sqrt(rad)", rot.relative ? unused : rot.form_note);
-  add_sd(out.fits, "rot_rel_sd", e.rot_rel_var, rot.relative ? rot.variance_se : 0.0, rot.relative ? nr : 0, "",
-         rot.relative ? rot.form_note : unused);
+  add_sd(out.fits, "rot_sd_per_sqrt_rad", rot.unit_var, rot.unit_var_se, rot.unit_runs, "rad/sqrt(rad)",
+         rot.unit_note);
+  add_sd(out.fits, "rot_rel_sd", rot.rel_var, rot.rel_var_se, rot.rel_runs, "", rot.rel_note);
   out.fits.push_back({"drift_deg_per_m", drift * kRadToDeg, heading.scale_se * kRadToDeg,
                       heading.residual_rms * kRadToDeg, "deg/m", "deg", ns,
                       "true heading change per odometric metre, straight runs"});
-  add_sd(out.fits, "heading_sd_per_sqrt_m", heading_var, heading.variance_se, ns, "rad/sqrt(m)",
+  add_sd(out.fits, "heading_sd_per_sqrt_m", heading_var, heading.unit_var_se, ns, "rad/sqrt(m)",
          "heading spread of the straight runs, less their rotation error");
   return out;
 }
