@@ -387,9 +387,17 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
     at_budget.rmax_grid = rax.values;
     Result<verifier::VerifyResult> budget_read = verifier::verify_outcome(mission, models, *outcome, at_budget);
     if (!budget_read) throw std::runtime_error("verify: " + budget_read.error().message);
+    // What the gate decides on at each cell: the joint probability at its
+    // stricter decision point (verifier::decision_point(): separable, so one
+    // more read of the same evaluation on mapped axes).
+    verifier::VerifyOptions decided_grid;
+    for (const double t : tax.values) decided_grid.tmax_grid.push_back(verifier::decision_point(t, 1.0, verified->widened).tmax_s);
+    for (const double rm : rax.values) decided_grid.rmax_grid.push_back(verifier::decision_point(1.0, rm, verified->widened).rmax_m);
+    Result<verifier::VerifyResult> decided_read = verifier::verify_outcome(mission, models, *outcome, decided_grid);
+    if (!decided_read) throw std::runtime_error("verify: " + decided_read.error().message);
     r.score = score_mission(tax.values, rax.values, verified->grid->p_time, budget_read->grid->p_joint.front(), vjoint,
                             curve_points(mid.time, lo.time, hi.time), completed_radius_curve(runs, rax.values, timeout_s),
-                            wjoint);
+                            wjoint, &decided_read->grid->p_joint);
 
     // 7. How to redo it: the whole mission, or each step in its folder.
     r.reproduce = o.command_prefix + " " +

@@ -68,7 +68,8 @@ MissionScore score_mission(const std::vector<double>& tmax, const std::vector<do
                            const std::vector<std::vector<double>>& verify_joint,
                            const std::vector<ValidationPoint>& validation_time,
                            const std::vector<ValidationPoint>& validation_radius,
-                           const std::vector<std::vector<ValidationPoint>>& validation_joint) {
+                           const std::vector<std::vector<ValidationPoint>>& validation_joint,
+                           const std::vector<std::vector<double>>* decided_joint) {
   MissionScore m;
   m.time = score_curve(tmax, verify_time, validation_time, true);
   m.radius = score_curve(rmax, verify_radius, validation_radius, false);
@@ -83,9 +84,10 @@ MissionScore score_mission(const std::vector<double>& tmax, const std::vector<do
       const double v = verify_joint[i][j];
       const ValidationPoint& w = validation_joint[i][j];
       add_point(m.joint, tmax[i], rmax[j], v, w);
-      if (overconfident_go(v, w)) {
+      const double decided = decided_joint != nullptr ? decided_joint->at(i).at(j) : v;
+      if (overconfident_go(decided, w)) {
         ++m.overconfident_go_cells;
-        m.overconfident.push_back({tmax[i], rmax[j], v, w.p, w.ci_low, w.ci_high});
+        m.overconfident.push_back({tmax[i], rmax[j], decided, w.p, w.ci_low, w.ci_high});
       }
     }
   }

@@ -38,10 +38,10 @@ std::string format_check(const CheckReport& report) {
   out += line("P(every robot within Rmax = " + format_fixed(r.rmax_m, 2) + " m)", format_fixed(r.p_radius, 4));
   out += line("P(success) = P(both)", format_fixed(r.p_joint, 4) + (r.p_joint >= r.threshold ? "  >= " : "  < ") +
                                           "threshold " + format_fixed(r.threshold, 4));
-  if (r.p_joint_widened) {
-    out += line("P(success) widened", format_fixed(*r.p_joint_widened, 4) + " at Tmax - " + format_fixed(verifier::kWidenTime_s, 1) +
-                                          " s, Rmax - " + format_fixed(verifier::kWidenRadius_m, 2) + " m (decided on this)");
-  }
+  out += line("P(success) decided", format_fixed(r.p_joint_decided, 4) + " at " + format_fixed(r.decided_tmax_s, 2) + " s, " +
+                                        format_fixed(r.decided_rmax_m, 3) + " m (" +
+                                        (r.widened ? "the 1 % margin and a curve-shifting approximation" : "the 1 % margin") +
+                                        "; the gate decides on this)");
   for (const verifier::CriterionVerdict& c : r.criteria) {
     out += line("criterion " + c.name, format_fixed(c.probability, 4) + (c.holds ? "  holds" : "  FAILS") + " (needs " +
                                            format_fixed(c.required, 4) + ")");

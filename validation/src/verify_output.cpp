@@ -75,7 +75,8 @@ nlohmann::json verify_json(const mission::Mission& mission, const verifier::Veri
   j["mission"] = mission.name;
   j["decision"] = verifier::to_string(verifier::decision(r));
   j["evaluable"] = r.evaluable;
-  j["p_joint_widened"] = r.p_joint_widened ? nlohmann::json(*r.p_joint_widened) : nlohmann::json(nullptr);
+  j["p_joint_decided"] = r.p_joint_decided;
+  j["decided_at"] = {{"tmax_s", r.decided_tmax_s}, {"rmax_m", r.decided_rmax_m}, {"widened", r.widened}};
   j["tmax_s"] = r.tmax_s;
   j["rmax_m"] = r.rmax_m;
   j["threshold"] = r.threshold;
@@ -142,10 +143,9 @@ std::string verify_text(const mission::Mission& mission, const verifier::VerifyR
        "\n";
   s += "  P(every r_i <= Rmax)         " + format_fixed(r.p_radius, 4) + "\n";
   s += "  P(t <= Tmax and r_i <= Rmax) " + format_fixed(r.p_joint, 4) + "\n";
-  if (r.p_joint_widened) {
-    s += "  decided at Tmax - " + format_fixed(verifier::kWidenTime_s, 1) + " s, Rmax - " + format_fixed(verifier::kWidenRadius_m, 2) +
-         " m (an approximation that shifts the curves): P " + format_fixed(*r.p_joint_widened, 4) + "\n";
-  }
+  s += "  decided at " + format_fixed(r.decided_tmax_s, 2) + " s, " + format_fixed(r.decided_rmax_m, 3) + " m (" +
+       (r.widened ? "the gate's 1 % margin and an approximation that shifts the curves" : "the gate's 1 % margin") +
+       "): P " + format_fixed(r.p_joint_decided, 4) + "\n";
   for (std::size_t i = 0; i < r.robots.size(); ++i) {
     const verifier::RobotPrediction& p = r.robots[i];
     if (!p.finishes) {

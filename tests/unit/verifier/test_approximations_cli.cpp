@@ -122,7 +122,7 @@ TEST_CASE("each of issue 12's six mission kinds lists its approximations, locate
     check_locations(e.mission, j["approximations"]);
     // NO-GO stays NO-GO; a GO by the probabilities becomes cannot-evaluate.
     const std::string decision = j["decision"];
-    const double decided = j["p_joint_widened"].is_number() ? j["p_joint_widened"].get<double>() : j["p_joint"].get<double>();
+    const double decided = j["p_joint_decided"].get<double>();
     if (decided >= j["threshold"].get<double>()) CHECK(decision == "cannot-evaluate");
     else CHECK(decision == "no-go");
   }
@@ -175,15 +175,16 @@ TEST_CASE("shipped examples whose kinds are vouched keep their GO / NO-GO") {
   // robot2's leg starts on a message: measured as a shift of the curves, so
   // the decision is taken at Tmax - 0.5 s, Rmax - 0.02 m (conservative).
   CHECK(kinds(j["approximations"]).count("leg-entered-on-message") == 1);
-  REQUIRE(j["p_joint_widened"].is_number());
-  CHECK(j["p_joint_widened"].get<double>() <= j["p_joint"].get<double>());
+  REQUIRE(j["p_joint_decided"].is_number());
+  CHECK(j["decided_at"]["widened"] == true);
+  CHECK(j["p_joint_decided"].get<double>() <= j["p_joint"].get<double>());
   // Where the curve is steep the widened answer refuses what the unwidened would launch.
   // (At 0.19 m: 0.843 unwidened, 0.079 widened. It was 0.21 m before the
   // final stop's run-out moved both robots about 1 cm closer to their goals.)
   const Run steep = run("verify " + relay + " --rmax 0.19 --json");
   const nlohmann::json s = nlohmann::json::parse(steep.out);
   CHECK(s["p_joint"].get<double>() >= 0.8);
-  CHECK(s["p_joint_widened"].get<double>() < 0.8);
+  CHECK(s["p_joint_decided"].get<double>() < 0.8);
   CHECK(steep.status == 1);
   CHECK(s["failed"].dump().find("decided there, not at Tmax and Rmax") != std::string::npos);
 }

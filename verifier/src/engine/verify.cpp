@@ -353,11 +353,12 @@ Result<VerifyResult> verify_outcome(const mission::Mission& mission, const Model
   const bool widen = std::any_of(r.approximations.begin(), r.approximations.end(), [](const Approximation& a) {
     return approximation_row(a.kind).treatment == Treatment::widen;
   });
-  if (widen) {
-    r.p_joint_widened =
-        probabilities(o, mission, r.tmax_s - kWidenTime_s, std::max(0.0, r.rmax_m - kWidenRadius_m), cycle_s).joint;
-  }
-  const double decided = r.p_joint_widened.value_or(r.p_joint);
+  const DecisionPoint at = decision_point(r.tmax_s, r.rmax_m, widen);
+  r.widened = widen;
+  r.decided_tmax_s = at.tmax_s;
+  r.decided_rmax_m = at.rmax_m;
+  r.p_joint_decided = probabilities(o, mission, at.tmax_s, at.rmax_m, cycle_s).joint;
+  const double decided = r.p_joint_decided;
   r.go = decided >= r.threshold;
   for (const CriterionVerdict& c : r.criteria) {
     if (!c.holds) {
@@ -367,11 +368,11 @@ Result<VerifyResult> verify_outcome(const mission::Mission& mission, const Model
     }
   }
   if (r.p_joint >= r.threshold && decided < r.threshold) {
-    r.failed.push_back("P(t <= " + fixed(r.tmax_s - kWidenTime_s, 1) + " s and every r_i <= " +
-                       fixed(std::max(0.0, r.rmax_m - kWidenRadius_m), 2) + " m) = " + fixed(decided, 3) +
-                       " < threshold " + fixed(r.threshold, 3) +
-                       " (decided there, not at Tmax and Rmax: an approximation of this mission shifts the curves, "
-                       "docs/verifier.md)");
+    r.failed.push_back("P(t <= " + fixed(at.tmax_s, 2) + " s and every r_i <= " + fixed(at.rmax_m, 3) + " m) = " +
+                       fixed(decided, 3) + " < threshold " + fixed(r.threshold, 3) +
+                       " (decided there, not at Tmax and Rmax: the gate's 1 % margin" +
+                       (widen ? std::string(", and an approximation of this mission that shifts the curves") : std::string()) +
+                       ", docs/verifier.md)");
   }
   // Never a GO on numbers the model could not define (counted as failure above).
   if (const double undefined = undefined_completion(o); undefined > 0.0) {
@@ -386,6 +387,15 @@ Result<VerifyResult> verify_outcome(const mission::Mission& mission, const Model
                        fixed(r.p_time, 3) + ", P(r <= Rmax) = " + fixed(r.p_radius, 3) + ")");
   }
   return r;
+}
+
+DecisionPoint decision_point(double tmax_s, double rmax_m, bool widen) {
+  DecisionPoint d{tmax_s * (1.0 - kDecisionMargin), rmax_m * (1.0 - kDecisionMargin)};
+  if (widen) {
+    d.tmax_s = std::min(d.tmax_s, tmax_s - kWidenTime_s);
+    d.rmax_m = std::min(d.rmax_m, std::max(0.0, rmax_m - kWidenRadius_m));
+  }
+  return d;
 }
 
 }  // namespace p3at::verifier

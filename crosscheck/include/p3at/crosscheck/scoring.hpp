@@ -85,12 +85,17 @@ ErrorSummary score_curve(const std::vector<double>& axis, const std::vector<doub
                          const std::vector<ValidationPoint>& validation, bool is_time_axis);
 
 /// The whole mission: both curves and the joint surface ([tmax][rmax]).
+/// Over-confident GO cells are counted on `decided_joint` when given: at each
+/// cell the probability the gate decides on there (verifier::decision_point(),
+/// 1 % stricter, and more for a curve-shifting approximation), since that is
+/// what it says GO on; the errors are always the raw surface's.
 /// Throws std::invalid_argument when shapes differ.
 MissionScore score_mission(const std::vector<double>& tmax, const std::vector<double>& rmax,
                            const std::vector<double>& verify_time, const std::vector<double>& verify_radius,
                            const std::vector<std::vector<double>>& verify_joint,
                            const std::vector<ValidationPoint>& validation_time,
                            const std::vector<ValidationPoint>& validation_radius,
-                           const std::vector<std::vector<ValidationPoint>>& validation_joint);
+                           const std::vector<std::vector<ValidationPoint>>& validation_joint,
+                           const std::vector<std::vector<double>>* decided_joint = nullptr);
 
 }  // namespace p3at::crosscheck
