@@ -96,6 +96,9 @@ void register_crosscheck(CLI::App& app, int& exit_status) {
   sub->add_flag("--reuse-runs", r.campaign.reuse_runs,
                 "Take each mission's validation runs from --out DIR/missions/NAME/runs.part when they were made from "
                 "the same files, seed, runs and timeout (re-scores a verifier change without re-simulating)");
+  sub->add_flag("--runs-only", r.campaign.runs_only,
+                "Only make (or keep) each mission's validation runs in --out DIR/missions/NAME/runs.part: no "
+                "calibration, verification or scores (score them later with --reuse-runs)");
   sub->add_option("--gnuplot", r.campaign.gnuplot, "gnuplot to draw with (default gnuplot)");
   sub->add_option("--baseline", r.baseline, "Fail (exit 1) when a mission is worse than this file allows (the CI gate)");
   sub->add_option("--write-baseline", r.write_baseline, "Record this campaign's errors, plus a margin, as a baseline");

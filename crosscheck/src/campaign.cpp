@@ -203,9 +203,36 @@ std::vector<MissionInput> folder_inputs(const std::vector<std::string>& folders,
   return out;
 }
 
+// The mission's validation runs (team_sim::run_campaign), quietly.
+template <class Say>
+std::vector<team_sim::RunResult> make_runs(const mission::Mission& mission, const sim::WorldConfig& world,
+                                           const CampaignOptions& o, std::uint64_t vseed, double timeout_s, const Say& say) {
+  team_sim::TeamScenario scenario(mission, world);
+  team_sim::CampaignOptions co;
+  co.runs = o.runs;
+  co.seed = vseed;
+  co.jobs = o.jobs;
+  co.run.timeout_s = timeout_s;
+  say("validating", 0, o.runs);
+  // The executives' warnings (a Spin faster than the robot turns, once per
+  // run) would fill stderr with thousands of copies; the runs' outcomes say it all.
+  const log::Level level = log::threshold();
+  log::threshold() = log::Level::error;
+  std::vector<team_sim::RunResult> runs;
+  try {
+    runs = team_sim::run_campaign(scenario, co, [&](std::uint64_t done, std::uint64_t total) { say("validating", done, total); });
+  } catch (...) {
+    log::threshold() = level;
+    throw;
+  }
+  log::threshold() = level;
+  return runs;
+}
+
 MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, const MissionProgress& progress) {
   MissionResult r;
   r.name = input.name;
+  r.runs_only = o.runs_only;
   r.source = input.source;
   r.generator_seed = input.generator_seed;
   const auto say = [&progress](const std::string& phase, std::uint64_t done = 0, std::uint64_t total = 0) {
@@ -225,6 +252,27 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
     if (input.generated && !o.gnuplot.empty()) {
       // A floor plan beside the files; a missing gnuplot costs the picture, not the mission.
       (void)mission_gen::draw_picture(*input.generated, (folder / "plan").string(), o.gnuplot);
+    }
+
+    if (o.runs_only) {
+      // Only the runs (step 3 below): nothing here depends on the verifier.
+      say("validating", 0, o.runs);
+      const double timeout_s = validation_timeout_s(mission.criteria.tmax_s);
+      const std::uint64_t vseed = mission_validation_seed(o.seed, input.name);
+      const auto t0 = std::chrono::steady_clock::now();
+      const team_sim::CampaignHeader header = runs_header(input, mission, vseed, o.runs, timeout_s);
+      r.runs_only = true;
+      if (auto cached = cached_runs(folder / kRunsFile, header)) {
+        r.runs = cached->size();
+        r.runs_reused = true;
+      } else {
+        const std::vector<team_sim::RunResult> runs = make_runs(mission, world, o, vseed, timeout_s, say);
+        r.runs = runs.size();
+        const Status written = team_sim::write_part_file((folder / kRunsFile).string(), team_sim::make_part(header, {0, 1}, runs));
+        if (!written) throw std::runtime_error("cannot keep the runs: " + written.error().message);
+      }
+      r.validate_s = seconds_since(t0);
+      return r;
     }
 
     // 1. Robot models from the world alone.
@@ -280,24 +328,7 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
       runs = std::move(*cached);
       r.runs_reused = true;
     } else {
-      team_sim::TeamScenario scenario(mission, world);
-      team_sim::CampaignOptions co;
-      co.runs = o.runs;
-      co.seed = vseed;
-      co.jobs = o.jobs;
-      co.run.timeout_s = timeout_s;
-      say("validating", 0, o.runs);
-      // The executives' warnings (a Spin faster than the robot turns, once per
-      // run) would fill stderr with thousands of copies; the runs' outcomes say it all.
-      const log::Level level = log::threshold();
-      log::threshold() = log::Level::error;
-      try {
-        runs = team_sim::run_campaign(scenario, co, [&](std::uint64_t done, std::uint64_t total) { say("validating", done, total); });
-      } catch (...) {
-        log::threshold() = level;
-        throw;
-      }
-      log::threshold() = level;
+      runs = make_runs(mission, world, o, vseed, timeout_s, say);
       const Status written = team_sim::write_part_file((folder / kRunsFile).string(), team_sim::make_part(header, {0, 1}, runs));
       if (!written) log::warn("crosscheck", "cannot keep the runs: " + written.error().message);
     }

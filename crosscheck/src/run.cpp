@@ -261,6 +261,7 @@ int run_crosscheck(const CrosscheckRun& run) {
 
   const Bounds bounds;
   Progress progress(inputs.size());
+  bool any_runs_only_error = false;
   std::vector<MissionResult> results;
   const auto t0 = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < inputs.size(); ++i) {
@@ -268,6 +269,14 @@ int run_crosscheck(const CrosscheckRun& run) {
       progress.update(i, inputs[i].name, phase, done, total);
     });
     progress.finished(i, r);
+    if (r.runs_only) {
+      if (!r.error.empty()) std::printf("%s: could not make its runs: %s\n", r.name.c_str(), r.error.c_str());
+      else std::printf("%s: %llu runs %s %s/runs.part\n", r.name.c_str(), static_cast<unsigned long long>(r.runs),
+                       r.runs_reused ? "already in" : "kept in", r.folder.c_str());
+      std::fflush(stdout);
+      if (!r.error.empty()) any_runs_only_error = true;
+      continue;
+    }
     if (!run.shard) {
       // As each mission ends, so that a campaign stopped part-way still leaves its results
       // (a shard's record is its part: shards share the folder).
@@ -281,6 +290,12 @@ int run_crosscheck(const CrosscheckRun& run) {
     results.push_back(std::move(r));
   }
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (run.campaign.runs_only) {
+    std::fprintf(stderr, "vipars crosscheck: --runs-only: the runs of %zu missions are in %s/missions/NAME/runs.part "
+                         "(%.0f s); score them with the same command and --reuse-runs instead of --runs-only\n",
+                 inputs.size(), run.campaign.out_dir.c_str(), wall_s);
+    return any_runs_only_error ? 3 : 0;
+  }
   if (run.shard) {
     CrosscheckPart part;
     part.header.identity = campaign_identity(all_inputs, run.campaign);

@@ -101,6 +101,41 @@ TEST_CASE("vipars crosscheck: the same results for any --jobs, a folder that rem
   fs::remove_all(dir);
 }
 
+TEST_CASE("vipars crosscheck --runs-only makes the runs a later --reuse-runs campaign scores, unchanged") {
+  const fs::path dir = fs::temp_directory_path() / ("p3at-crosscheck-runs-only-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const Outcome only = run(kVipars + kCampaign + " --runs-only --out b", dir);
+  REQUIRE(only.status == 0);
+  CHECK(fs::is_regular_file(dir / "b/missions/gen_5/runs.part"));
+  CHECK(!fs::exists(dir / "b/missions.jsonl"));                   // nothing scored
+  CHECK(!fs::exists(dir / "b/missions/gen_5/verify.json"));      // nothing verified
+  CHECK(only.out.find("kept in") != std::string::npos);
+  // Again: the runs are there already and are kept as they are.
+  const Outcome again = run(kVipars + kCampaign + " --runs-only --out b", dir);
+  REQUIRE(again.status == 0);
+  CHECK(again.out.find("already in") != std::string::npos);
+  // Scored with --reuse-runs: the same results as a campaign that made its own runs.
+  const Outcome scored = run(kVipars + kCampaign + " --reuse-runs --out b", dir);
+  REQUIRE(scored.status == 0);
+  CHECK(scored.err.find("validation runs reused from its runs.part") != std::string::npos);
+  const Outcome fresh = run(kVipars + kCampaign + " --out c", dir);
+  REQUIRE(fresh.status == 0);
+  const auto strip = [](nlohmann::json j) {
+    j = without_timing(j);
+    j.erase("command");
+    for (auto& m : j["missions"]) {
+      m.erase("folder");
+      m.erase("reproduce");
+    }
+    return j;
+  };
+  CHECK(strip(nlohmann::json::parse(read_file(dir / "b/crosscheck.json"))) ==
+        strip(nlohmann::json::parse(read_file(dir / "c/crosscheck.json"))));
+  CHECK(read_file(dir / "b/missions/gen_5/validate.json") == read_file(dir / "c/missions/gen_5/validate.json"));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("vipars crosscheck --reuse-runs: the folder's runs give the same results; other or damaged runs are not used") {
   const fs::path dir = fs::temp_directory_path() / ("p3at-crosscheck-reuse-" + std::to_string(::getpid()));
   fs::remove_all(dir);

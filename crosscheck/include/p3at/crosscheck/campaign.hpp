@@ -51,6 +51,10 @@ struct CampaignOptions {
   /// run count and timeout (the runs never depend on the verifier, so a
   /// verifier change is re-scored without re-simulating). Changes no result.
   bool reuse_runs = false;
+  /// Calibrate nothing, verify nothing: only make (or keep) each mission's
+  /// validation runs in its folder, for a later --reuse-runs campaign to
+  /// score (a sweep's simulation started while the verifier still changes).
+  bool runs_only = false;
 };
 
 /// The validation's per-run time budget: twice the criterion's Tmax, at least
@@ -68,6 +72,7 @@ struct MissionResult {
   std::string calibration_note;          ///< how the robots were calibrated
   std::uint64_t runs = 0, failed_runs = 0;
   bool runs_reused = false;              ///< the validation came from the folder's runs.part (--reuse-runs)
+  bool runs_only = false;                ///< --runs-only: the runs were made or kept, nothing scored
   std::string tmax_range, rmax_range;    ///< the grid, A:B:STEP
   double criteria_tmax_s = 0.0, criteria_rmax_m = 0.0;
   double verify_p_joint = 0.0, validate_p_joint = 0.0;  ///< at the mission's own criteria
