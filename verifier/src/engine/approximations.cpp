@@ -403,7 +403,7 @@ class Detector {
       add(ApproximationKind::teammates_moving_near_path, c.robot, MissionElement::state, c.state,
           "its leg " + pt(a) + "-" + pt(b) + " " + how + " " + t.name + "'s leg in '" + t.states[c.teammate_state].name +
               "' " + pt(e) + "-" + pt(f) + ", driven at the same time (avoidance reach " + num(reach, 2) +
-              " m): the robot entering later steers around the other's predicted mean path, made without it (one-way)");
+              " m): neither evaluation sees the other drive (a teammate is an obstacle only where it stands still)");
     }
   }
 

@@ -24,6 +24,7 @@
 /// or slow it down), and it is j's MEAN path, a single body, not the spread
 /// of where j may be.
 
+#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <utility>
@@ -53,9 +54,10 @@ struct MovingBody {
   BodyPose rest;
   std::size_t rest_until = 0;
 
-  /// Where the body is at cycle n, or null when it has gone.
+  /// Where the body is at cycle n, or null when it is not an obstacle then
+  /// (gone, or driving: a pose whose x is NaN, see follow_legs()).
   const BodyPose* at(std::size_t cycle) const {
-    if (cycle < poses.size()) return &poses[cycle];
+    if (cycle < poses.size()) return std::isnan(poses[cycle].x_m) ? nullptr : &poses[cycle];
     return cycle < rest_until ? &rest : nullptr;
   }
 };
