@@ -68,10 +68,6 @@ class PathStepper {
   bool delicate(const Walker& w) const;
 
   const mission::GoToGuardedParams* go() const { return go_; }
-  /// How close (m, from the robot's centre) an obstacle must be for AVOID_OBSTACLES to act.
-  double avoid_reach_m() const { return avoid_reach_m_; }
-  /// The walls and teammates' bodies the state is analysed against.
-  const std::vector<Segment>& obstacles() const;
   /// Cycles between mean-path samples (one second).
   std::size_t sample_every() const { return sample_every_; }
 

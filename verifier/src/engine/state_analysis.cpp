@@ -513,84 +513,6 @@ std::vector<Walker> entry_walkers(const mission::GoToGuardedParams* go, const Ba
   return out;
 }
 
-/// Where the robot truly is decides whether a wall's avoidance field pins it
-/// (the sonar sees the world from the true pose), but each path steps at its
-/// error's mean: a leg that passes within avoidance reach of an obstacle
-/// for some true poses the error spread allows and not for others was all
-/// pinned or all free (generated gen_1028: verify stuck 1.0, runs 0.8;
-/// gen_1017: a doorway jamb that 10.7 % of runs hit, verify 0). So a walker
-/// whose true straight path comes within reach + 2 sd of an obstacle is split
-/// in three along the error direction that moves the leg's middle most
-/// (Gauss-Hermite: -sqrt(3), 0, +sqrt(3) sd with weights 1/6, 2/3, 1/6),
-/// each keeping the error's covariance less that direction's share: the
-/// total error distribution is unchanged, only sampled where it matters.
-std::vector<Walker> split_on_error_spread(const PathStepper& stepper, const std::vector<Walker>& in) {
-  const mission::GoToGuardedParams* go = stepper.go();
-  if (go == nullptr || stepper.obstacles().empty()) return in;
-  constexpr double kMinSdM = 0.05;  // below this the split paths would hardly differ
-  std::vector<Walker> out;
-  for (const Walker& w : in) {
-    const Eigen::Vector2d q(w.q.x_m, w.q.y_m);
-    const Eigen::Vector2d to_goal = Eigen::Vector2d(go->goal.x_m, go->goal.y_m) - q;
-    const double length = to_goal.norm();
-    if (!(length > 0.0)) {
-      out.push_back(w);
-      continue;
-    }
-    const Eigen::Vector2d dir = to_goal / length, perp(-dir.y(), dir.x());
-    // The true path's displacement at the leg's middle: e_xy + e_theta * (L / 2) * perp.
-    Eigen::Matrix<double, 2, 3> jac;
-    jac << 1.0, 0.0, 0.5 * length * perp.x(), 0.0, 1.0, 0.5 * length * perp.y();
-    const Eigen::Matrix2d mid_cov = jac * w.error.cov * jac.transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(0.5 * (mid_cov + mid_cov.transpose()));
-    const double lambda = eig.eigenvalues()(1);
-    if (!(lambda > kMinSdM * kMinSdM)) {
-      out.push_back(w);
-      continue;
-    }
-    const double sd = std::sqrt(lambda);
-    const Eigen::Vector2d v = eig.eigenvectors().col(1);
-    const Eigen::Vector3d g = w.error.cov * jac.transpose() * v;  // Cov(e, v . displacement)
-    const Eigen::Vector3d offset = std::sqrt(3.0) * g / sd;
-    // Only where it decides something: the straight true path from each of
-    // the three sigma points comes within avoidance reach of an obstacle from
-    // some of them and not from others (a doorway jamb, a pillar). Alongside
-    // a hallway's walls every true pose is within reach and the three paths
-    // would steer alike (Bounding Overwatch's legs: splitting there cost 2.3 x
-    // its CPU for nothing).
-    double nearest_lo = std::numeric_limits<double>::infinity(), nearest_hi = 0.0;
-    for (const double side : {-1.0, 0.0, 1.0}) {
-      const Eigen::Vector3d e = w.error.mean + side * offset;
-      const Eigen::Vector2d from = q + e.head<2>();
-      const double c = std::cos(e(2)), s = std::sin(e(2));
-      const Eigen::Vector2d heading(c * dir.x() - s * dir.y(), s * dir.x() + c * dir.y());
-      double nearest = std::numeric_limits<double>::infinity();
-      for (double d = 0.0; d <= length + 1e-9; d += 0.25) {
-        const Eigen::Vector2d at = from + d * heading;
-        nearest = std::min(nearest, nearest_distance(stepper.obstacles(), at.x(), at.y()));
-      }
-      nearest_lo = std::min(nearest_lo, nearest);
-      nearest_hi = std::max(nearest_hi, nearest);
-    }
-    if (!(nearest_lo <= stepper.avoid_reach_m() && nearest_hi > stepper.avoid_reach_m())) {
-      out.push_back(w);
-      continue;
-    }
-    Walker centre = w;
-    centre.error.cov = w.error.cov - g * g.transpose() / lambda;
-    centre.error.cov = 0.5 * (centre.error.cov + centre.error.cov.transpose());
-    centre.weight = w.weight * 2.0 / 3.0;
-    for (const double side : {-1.0, 1.0}) {
-      Walker s = centre;
-      s.error.mean += side * offset;
-      s.weight = w.weight / 6.0;
-      out.push_back(s);
-    }
-    out.push_back(centre);
-  }
-  return out;
-}
-
 StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const BaseState& start,
                              const ErrorState& error_start, const std::vector<StartPoint>& start_points) {
   const mission::RobotSpec& robot = *ctx.robot;
@@ -609,7 +531,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   // angle): one path from the mean, and its start points carried through
   // below, rather than a path per point.
   const std::vector<Walker> entries =
-      split_on_error_spread(stepper, entry_walkers(go, start, error_start, go != nullptr ? start_points : std::vector<StartPoint>{}));
+      entry_walkers(go, start, error_start, go != nullptr ? start_points : std::vector<StartPoint>{});
   // Walkers kept between redraws: four per direction. Measured on
   // tests/data/accuracy/noise_redrawn_leg (2,000 runs): 8 kept gave a radius
   // curve 0.24 off (each merge of the lateral spread distorts the end arc),
