@@ -397,6 +397,21 @@ void settle_phases(std::vector<FinishedPath>& done, std::size_t directions, std:
   }
 }
 
+/// Start points moved as the mean moved from `from` to `to` (a Spin's turn, a
+/// still state's braking: every point alike), with the mean's end velocities.
+std::vector<StartPoint> carried_along(const std::vector<StartPoint>& points, const BaseState& from, const BaseState& to) {
+  std::vector<StartPoint> out;
+  for (StartPoint p : points) {
+    p.q.x_m += to.x_m - from.x_m;
+    p.q.y_m += to.y_m - from.y_m;
+    p.q.theta_rad += to.theta_rad - from.theta_rad;
+    p.q.trans_mps = to.trans_mps;
+    p.q.rot_radps = to.rot_radps;
+    out.push_back(p);
+  }
+  return out;
+}
+
 /// Which way (and how far) a robot at q must turn to face the state's goal
 /// (GoToGuarded), or its heading relative to `ref` (Spin): the order in which
 /// start points are merged, so that robots turning left and robots turning
@@ -635,15 +650,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
     if (go == nullptr && start_points.size() > 1) {
       // The spin's start points, turned with it: the heading spread it came
       // with is what the next leg's turn toward its goal depends on.
-      a.end_points.clear();
-      for (StartPoint p : start_points) {
-        p.q.x_m += a.end.x_m - start.x_m;
-        p.q.y_m += a.end.y_m - start.y_m;
-        p.q.theta_rad += a.end.theta_rad - start.theta_rad;
-        p.q.trans_mps = a.end.trans_mps;
-        p.q.rot_radps = a.end.rot_radps;
-        a.end_points.push_back(p);
-      }
+      a.end_points = carried_along(start_points, start, a.end);
     }
   }
   if (go) {
@@ -753,14 +760,7 @@ StateAnalysis analyze_still(const StateContext& ctx, std::size_t state, const Ba
   a.cycles_simulated = braking_cycles;
   // The start points brake the way the mean does (a still robot's points
   // only carry on to the next motion state).
-  for (StartPoint p : start_points) {
-    p.q.x_m += a.end.x_m - start.x_m;
-    p.q.y_m += a.end.y_m - start.y_m;
-    p.q.theta_rad += a.end.theta_rad - start.theta_rad;
-    p.q.trans_mps = a.end.trans_mps;
-    p.q.rot_radps = a.end.rot_radps;
-    a.end_points.push_back(p);
-  }
+  a.end_points = carried_along(start_points, start, a.end);
 
   // Self-timed exits on a still robot fire on the first check or never.
   for (const std::size_t t : robot.states[state].outgoing) {
