@@ -375,6 +375,7 @@ ScaleVerdicts bench_relay_scaling(const ScaleSettings& set) {
       }
     }
   }
+  if (time_xy.size() < 2) return v;  // one case (--relay): no growth to fit
   std::printf("growth of the CPU median (least-squares slope on log-log; 1 = linear): time ~ (k*m)^%.2f over every "
               "case; at m = %zu, time ~ k^%.2f; at k = %zu, time ~ m^%.2f; verify's RSS ~ (k*m)^%.2f\n",
               growth_exponent(time_xy), set.states.back(), growth_exponent(time_k), set.robots.back(),
@@ -386,20 +387,50 @@ ScaleVerdicts bench_relay_scaling(const ScaleSettings& set) {
   return v;
 }
 
+void print_usage() {
+  std::fprintf(stderr,
+               "usage: bench_verifier [--quick | --relay K M]\n"
+               "  --quick      fewer runs and k up to 8 (a smoke test)\n"
+               "  --relay K M  only the relay case of K robots x M states (to profile it, e.g. under perf record)\n");
+}
+
+/// Reads a positive case size for --relay; 0 if `text` is not one.
+std::size_t parse_case_size(const char* text) {
+  char* end = nullptr;
+  const unsigned long value = std::strtoul(text, &end, 10);
+  return (end != text && *end == '\0' && value > 0 && value <= 256) ? static_cast<std::size_t>(value) : 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   bool quick = false;
+  std::size_t relay_k = 0, relay_m = 0;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--quick") == 0) {
       quick = true;
+    } else if (std::strcmp(argv[i], "--relay") == 0 && i + 2 < argc) {
+      relay_k = parse_case_size(argv[i + 1]);
+      relay_m = parse_case_size(argv[i + 2]);
+      if (relay_k == 0 || relay_m == 0) {
+        print_usage();
+        return 2;
+      }
+      i += 2;
     } else {
-      std::fprintf(stderr, "usage: bench_verifier [--quick]\n  --quick  fewer runs and k up to 8 (a smoke test)\n");
+      print_usage();
       return 2;
     }
   }
   log::threshold() = log::Level::warn;
 
+  if (relay_k != 0) {
+    ScaleSettings one;
+    one.robots = {relay_k};
+    one.states = {relay_m};
+    bench_relay_scaling(one);
+    return 0;
+  }
   const int runs = quick ? 5 : 20;
   const BoVerdicts bo = bench_bounding_overwatch(runs);
   if (!bo.ran) return 2;
