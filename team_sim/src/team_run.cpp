@@ -22,6 +22,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// A heading in degrees within (-180, 180], for the run's report.
+double wrapped_deg(double theta_rad) { return std::remainder(theta_rad, 2.0 * kPi) * 180.0 / kPi; }
+
 // The simulated radio authenticates like the real link; the key's value is
 // irrelevant inside one process, so a fixed one keeps runs identical.
 hal::TeamKey simulation_key() {
@@ -229,6 +232,8 @@ RunResult TeamScenario::run(std::uint64_t run_index, std::uint64_t seed, const R
     const auto believed = robot.odometry_in_world();
     r.odom_x_m = believed.x_m;
     r.odom_y_m = believed.y_m;
+    r.true_theta_deg = wrapped_deg(robot.true_pose().theta_rad);
+    r.odom_theta_deg = wrapped_deg(believed.theta_rad);
     r.dist_to_goal_m = std::hypot(r.true_x_m - goals_[i].x_m, r.true_y_m - goals_[i].y_m);
     r.cycle_p50_us = e.stats().p50_us();
     r.cycle_p99_us = e.stats().p99_us();

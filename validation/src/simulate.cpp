@@ -30,7 +30,8 @@ nlohmann::json run_to_json(const team_sim::RunResult& run) {
   for (const auto& r : run.robots) {
     robots.push_back({{"name", r.name}, {"phase", r.phase}, {"reason", r.reason}, {"end_time_s", r.end_time_s},
                       {"true_x_m", r.true_x_m}, {"true_y_m", r.true_y_m}, {"odom_x_m", r.odom_x_m},
-                      {"odom_y_m", r.odom_y_m}, {"dist_to_goal_m", r.dist_to_goal_m}});
+                      {"odom_y_m", r.odom_y_m}, {"true_theta_deg", r.true_theta_deg},
+                      {"odom_theta_deg", r.odom_theta_deg}, {"dist_to_goal_m", r.dist_to_goal_m}});
   }
   return {{"run", run.run}, {"seed", run.seed}, {"outcome", run.outcome}, {"time_s", run.time_s},
           {"closest_approach_m", run.closest_approach_m}, {"robots", robots}};

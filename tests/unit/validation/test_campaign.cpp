@@ -171,6 +171,10 @@ TEST_CASE("a finished run records each robot where it came to rest, past where i
     const double across = -(r.true_x_m - f.true_x_m) * std::sin(heading) + (r.true_y_m - f.true_y_m) * std::cos(heading);
     CHECK(along == doctest::Approx(0.206).epsilon(0.01));
     CHECK(std::abs(across) < 0.002);
+    // Braking straight on: the heading it rests with is the one it fired with (degrees, true and odometric).
+    CHECK(std::abs(r.true_theta_deg - f.true_theta_deg) < 0.5);
+    CHECK(std::abs(r.true_theta_deg - heading * 180.0 / 3.14159265358979323846) < 5.0);
+    CHECK(std::abs(r.odom_theta_deg - r.true_theta_deg) < 5.0);
     const double odom_along = std::hypot(r.odom_x_m - f.odom_x_m, r.odom_y_m - f.odom_y_m);
     CHECK(odom_along == doctest::Approx(0.206).epsilon(0.03));  // odometry counts it, with its random error
     CHECK(r.dist_to_goal_m < f.dist_to_goal_m - 0.15);

@@ -18,6 +18,9 @@ struct RobotResult {
   /// came to rest after entering its final state, else where it stood when the run ended.
   double true_x_m = 0.0, true_y_m = 0.0;
   double odom_x_m = 0.0, odom_y_m = 0.0;  ///< where it believed it was (same moment)
+  /// Headings at the same moment, world frame, in (-180, 180]: the true one and the
+  /// odometry's (a turn's direction and the heading error it leaves are read from these).
+  double true_theta_deg = 0.0, odom_theta_deg = 0.0;
   double dist_to_goal_m = 0.0;       ///< true distance to its goal (RobotSpec::goal)
   double cycle_p50_us = 0.0;         ///< the executive's compute time per cycle (measured, not simulated)
   double cycle_p99_us = 0.0;
