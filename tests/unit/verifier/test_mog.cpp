@@ -570,6 +570,35 @@ TEST_SUITE("probability_within") {
     CHECK(p3at::verifier::probability_within(Gaussian2{across, line}, across, 0.0) == 0.0);
     CHECK(p3at::verifier::probability_within(point, Eigen::Vector2d(3.0, 4.0), -1.0) == 0.0);
   }
+  TEST_CASE("a line by rounding (minor sd 1e-9 m): the line's chord, and an answer in bounded work") {
+    // The CI gate's gen_8 produced this final-position component: its
+    // determinant is rounding (minor variance 1.6e-18), so it is integrated
+    // across a minor axis of 1.25e-9 m, where the quadrature's two rules
+    // never agreed and halving to the depth limit took 20 s per radius.
+    Eigen::Matrix2d cov;
+    cov << 0.0082878725983382417, -0.014803638649515621, -0.014803638649515621, 0.026441974664206697;
+    const Eigen::Vector2d mean(11.155092023003292, 5.3439331577409117);
+    const Eigen::Vector2d goal(11.8, 3.1);
+    // As a line: N(0, l1) along the major axis through the mean.
+    const double a = cov(0, 0), c = cov(1, 1), b = cov(0, 1);
+    const double l1 = 0.5 * (a + c) + std::hypot(0.5 * (a - c), b);
+    const double angle = 0.5 * std::atan2(2.0 * b, a - c);
+    const Eigen::Vector2d major(std::cos(angle), std::sin(angle));
+    const Eigen::Vector2d minor(-major.y(), major.x());
+    const Eigen::Vector2d mu = mean - goal;
+    for (const double r : {2.0, 2.1, 2.2, 2.3, 2.5}) {
+      CAPTURE(r);
+      const double across = mu.dot(minor);
+      const double half_chord = std::sqrt(r * r - across * across);
+      const double along = mu.dot(major);
+      const double want = normal_cdf((half_chord - along) / std::sqrt(l1)) - normal_cdf((-half_chord - along) / std::sqrt(l1));
+      int intervals = 0;
+      CHECK(p3at::verifier::probability_within(Gaussian2{mean, cov}, goal, r, &intervals) ==
+            doctest::Approx(want).epsilon(1e-7).scale(1.0));
+      CHECK(intervals > 0);     // it did integrate (the line is not taken as one)
+      CHECK(intervals <= 400);  // smooth work: a few per panel, not the depth limit's millions
+    }
+  }
   TEST_CASE("probability_apart: the difference of two positions, against the Rayleigh CDF") {
     const Gaussian2 a{Eigen::Vector2d(1.0, 1.0), Eigen::Matrix2d::Identity() * 0.3};
     const Gaussian2 b{Eigen::Vector2d(1.0, 1.0), Eigen::Matrix2d::Identity() * 0.2};

@@ -101,6 +101,9 @@ struct Gaussian2 {
 /// Gauss-Kronrod; a mean more than 10 standard deviations outside (inside)
 /// the disk gives 0 (1) at once. A negative radius gives 0.
 double probability_within(const Gaussian2& x, const Eigen::Vector2d& centre, double radius);
+/// The same, adding to `*intervals` how many quadrature intervals it evaluated
+/// (at most 16,384 per call, whatever the covariance: the launch gate's time is bounded).
+double probability_within(const Gaussian2& x, const Eigen::Vector2d& centre, double radius, int* intervals);
 /// P(|X - Y| > distance) for independent X, Y.
 double probability_apart(const Gaussian2& x, const Gaussian2& y, double distance);
 
