@@ -71,7 +71,8 @@ int main(int argc, char** argv) {
 
   gate::CheckRequest request;
   request.mission_path = std::string(P3AT_SOURCE_DIR) + "/examples/bounding_overwatch/mission.yaml";
-  request.options.rmax_m = 2.5;  // the operator's Rmax of scripts/demo.sh: a GO
+  request.options.rmax_m = 2.5;    // the operator's criteria of scripts/demo.sh: a GO
+  request.options.tmax_s = 205.0;
   const gate::VerdictSource source = gate::verifier_source();
 
   const gate::CheckReport first = gate::pre_launch_check(request, source);  // warm-up, and the files load

@@ -35,9 +35,12 @@ world=examples/bounding_overwatch/world.yaml
 models="${P3AT_DEMO_MODELS:-examples/bounding_overwatch/models.yaml}"
 # The paper's Rmax of 2 m sits in the uncertain region for this mission
 # (P(success) about 0.4 < 0.8: NO-GO, docs/bounding-overwatch.md); the
-# operator asks for 2.5 m. The NO-GO run then also asks for Tmax 150 s,
-# which the ~195 s mission cannot meet.
-criteria=(--rmax 2.5)
+# operator asks for 2.5 m and 205 s. The mission's own Tmax, 200 s, is 1.1 sd
+# past the predicted 194.8 +- 4.3 s: the gate decides 1 % stricter than asked
+# (198 s, 2.475 m; docs/verifier.md), where P is 0.77 < 0.8, so it says NO-GO
+# there; at 205 s it decides at 202.95 s with P 0.965. The NO-GO run then also
+# asks for Tmax 150 s, which the ~195 s mission cannot meet.
+criteria=(--rmax 2.5 --tmax 205)
 too_tight=(--rmax 2.5 --tmax 150)
 [ -f "$models" ] || { echo "no robot models at $models (set P3AT_DEMO_MODELS=FILE)"; exit 2; }
 

@@ -27,7 +27,7 @@ m=examples/bounding_overwatch
 speedup="${P3AT_HIL_SPEEDUP:-8}"
 port="${P3AT_HIL_PORT:-9100}"
 lcm="udpm://239.255.76.67:${P3AT_HIL_LCM_PORT:-7800}?ttl=0"
-criteria=(--rmax 2.5)  # as scripts/demo.sh: the operator's Rmax, a GO for this mission
+criteria=(--rmax 2.5 --tmax 205)  # as scripts/demo.sh: the operator's criteria, a GO for this mission
 "$bin/p3at_team_key" "$work/team.key" >/dev/null
 
 pids=()
