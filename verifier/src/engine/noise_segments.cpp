@@ -275,45 +275,40 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
       }
     }
     for (const Job& job : jobs) {
-      {
-        const std::size_t j = job.direction;
-        const double angle = job.angle;
-        Walker w = live[job.parent];
-        w.weight = job.weight;
-        // Recorded until the robot has come to rest for good (a leg waiting
-        // at its goal for a message): beyond the record the pose is held.
-        const std::size_t path = job.slot;
-        std::vector<TrajectoryPoint>* trace =
-            (record != nullptr && segment == 0) ? &record->paths[path] : nullptr;
-        if (trace != nullptr) record->weights[path] = w.weight;
-        for (;;) {
-          if (trace != nullptr) {
-            if (trace->size() >= 2 && at_rest(w.q) && at_rest(trace->back().base)) {
-              trace = nullptr;
-            } else {
-              trace->push_back({w.q, w.error});
-            }
+      Walker w = live[job.parent];
+      w.weight = job.weight;
+      // Recorded until the robot has come to rest for good (a leg waiting
+      // at its goal for a message): beyond the record the pose is held.
+      std::vector<TrajectoryPoint>* trace =
+          (record != nullptr && segment == 0) ? &record->paths[job.slot] : nullptr;
+      if (trace != nullptr) record->weights[job.slot] = w.weight;
+      for (;;) {
+        if (trace != nullptr) {
+          if (trace->size() >= 2 && at_rest(w.q) && at_rest(trace->back().base)) {
+            trace = nullptr;
+          } else {
+            trace->push_back({w.q, w.error});
           }
-          if (const auto exit = stepper.fired(w)) {
-            FinishedPath done{w, *exit, segment, j, job.start, 0.0};
-            done.phase_cycles = stepper.settle_phase(done.walker, *exit, &done.crossing_c, &done.step, &done.crossing_sd);
-            out.finished.push_back(done);
-            break;
-          }
-          if (w.cycles >= cap) {
-            out.stuck += w.weight;
-            out.stuck_x_m += w.weight * w.q.x_m;
-            out.stuck_y_m += w.weight * w.q.y_m;
-            break;
-          }
-          if (w.cycles >= until) {
-            children.push_back(w);
-            break;
-          }
-          sample(w);
-          stepper.step(w, angle);
-          ++out.cycles_simulated;
         }
+        if (const auto exit = stepper.fired(w)) {
+          FinishedPath done{w, *exit, segment, job.direction, job.start, 0.0};
+          done.phase_cycles = stepper.settle_phase(done.walker, *exit, &done.crossing_c, &done.step, &done.crossing_sd);
+          out.finished.push_back(done);
+          break;
+        }
+        if (w.cycles >= cap) {
+          out.stuck += w.weight;
+          out.stuck_x_m += w.weight * w.q.x_m;
+          out.stuck_y_m += w.weight * w.q.y_m;
+          break;
+        }
+        if (w.cycles >= until) {
+          children.push_back(w);
+          break;
+        }
+        sample(w);
+        stepper.step(w, job.angle);
+        ++out.cycles_simulated;
       }
     }
     // Far from the goal and from obstacles the flow is nearly linear in the

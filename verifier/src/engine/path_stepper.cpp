@@ -95,7 +95,6 @@ double PathStepper::settle_phase(Walker& w, std::size_t transition, double* cros
   return phase;
 }
 
-
 bool PathStepper::obstacle_within(const Walker& w, double x_m, double y_m, double reach_m) const {
   return nearest_distance(ctx_.obstacles, x_m, y_m) <= reach_m ||
          (ctx_.movers && ctx_.movers->within(w.cycles, x_m, y_m, reach_m));

@@ -94,9 +94,8 @@ Estimate gauss_kronrod(const DiskIntegrand& f, double lo, double hi) {
 // is placed to about eps |t|, which moves an integrand that varies over w by
 // about eps |t| / w of its value. Below that floor the rules never agree, and
 // halving down to kMaxDepth everywhere cost 2^kMaxDepth evaluations: a
-// covariance of rank one by rounding (minor sd 1e-9 m, on the CI gate's
-// gen_8 once start points carried their heading spread) took 20 s for one
-// probability. `intervals_left` bounds the work whatever happens.
+// covariance of rank one by rounding (minor sd 1e-9 m, met on the CI gate's
+// gen_8 during a verifier experiment) took 20 s for one probability. `intervals_left` bounds the work whatever happens.
 double adaptive(const DiskIntegrand& f, double lo, double hi, double tolerance, int depth, int& intervals_left) {
   const Estimate e = gauss_kronrod(f, lo, hi);
   --intervals_left;

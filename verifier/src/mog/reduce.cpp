@@ -99,7 +99,6 @@ void reduce(Mixture1& x, std::size_t max_components) {
     prev[i] = i > 0 ? i - 1 : kNone;
     if (next[i] != kNone) cost[i] = cost_after(i, next[i]);
   }
-  std::vector<bool> alive(n, true);
   std::size_t live = n;
   while (live > limit) {
     // Cheapest adjacent pair, walking the live list (component 0 is never
@@ -113,7 +112,6 @@ void reduce(Mixture1& x, std::size_t max_components) {
     const std::size_t gone = next[best];
     c[best] = merged(c[best], c[gone]);
     log_vars[best] = log_var(c[best].var);
-    alive[gone] = false;
     next[best] = next[gone];
     if (next[gone] != kNone) prev[next[gone]] = best;
     --live;
@@ -122,9 +120,7 @@ void reduce(Mixture1& x, std::size_t max_components) {
   }
   std::vector<Component1> kept;
   kept.reserve(live);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (alive[i]) kept.push_back(c[i]);
-  }
+  for (std::size_t i = 0; i != kNone; i = next[i]) kept.push_back(c[i]);
   c = std::move(kept);
   sort_by_mean(c);
 }
