@@ -51,6 +51,7 @@ robots:
       heading_sd_per_sqrt_m: 0.003
       trans_rel_sd: 0.05
       rot_rel_sd: 0.07
+      trans_per_rad_m: -0.004
   - name: bravo
 communication:
   delivery_ms: [{weight: 3, mean: 6, sd: 2}, {weight: 1, mean: 150, sd: 80}]
@@ -143,6 +144,7 @@ void check_same(const Models& a, const Models& b) {
     check_close(ea.heading_var_per_m, eb.heading_var_per_m);
     check_close(ea.trans_rel_var, eb.trans_rel_var);
     check_close(ea.rot_rel_var, eb.rot_rel_var);
+    check_close(ea.trans_per_rad_m, eb.trans_per_rad_m);
   }
   check_same_mixture(a.comm.delivery_s, b.comm.delivery_s);
   check_same_mixture(a.comm.ack_s, b.comm.ack_s);
@@ -188,6 +190,7 @@ TEST_SUITE("reading") {
     CHECK(e.heading_var_per_m == doctest::Approx(9e-6).epsilon(1e-15));
     CHECK(e.trans_rel_var == doctest::Approx(0.0025).epsilon(1e-15));
     CHECK(e.rot_rel_var == doctest::Approx(0.0049).epsilon(1e-15));
+    CHECK(e.trans_per_rad_m == -0.004);
     // bravo has neither block: the defaults.
     CHECK(m.robots[1].kinematics == Kinematics{});
     CHECK(m.robots[1].motion == MotionError{});
@@ -299,13 +302,13 @@ TEST_SUITE("errors name file:line:column and what was expected") {
                "expected a mapping for 'robots[1].motion', got '3'");
     check_edit("max_events: 5000", "max_events: 50.5", "50.5", "expected an integer for 'budget.max_events', got '50.5'");
     check_edit("  max_events: 5000", "  max_events: 5000\n  max_branches: 3", "max_branches: 3",
-               "duplicate key 'max_branches' in budget (first at 35:3)");
+               "duplicate key 'max_branches' in budget (first at 36:3)");
   }
   TEST_CASE("an unknown key: typos never fall back to defaults") {
     check_edit("      trans_scale: 0.95", "      trans_sclae: 0.95", "trans_sclae",
                "unknown key 'trans_sclae' in robots[0].motion (expected one of trans_scale, rot_scale, "
                "drift_deg_per_m, trans_sd_per_sqrt_m, rot_sd_per_sqrt_rad, heading_sd_per_sqrt_m, trans_rel_sd, "
-               "rot_rel_sd)");
+               "rot_rel_sd, trans_per_rad_m)");
     check_edit("budget:", "budgets:", "budgets",
                "unknown key 'budgets' at the top level (expected one of models, robots, communication, environment, "
                "budget)");
@@ -435,6 +438,7 @@ TEST_SUITE("writing") {
     r.motion.rot_var_per_rad = 0.1;
     r.motion.trans_scale = 0.9090909090909091;
     r.motion.rot_rel_var = 0.0004;
+    r.motion.trans_per_rad_m = 0.0091452923;
     m.robots.push_back(r);
     m.comm.delivery_s = Mixture1{{Component1{0.6, 0.0071234, 1.1e-5}, Component1{0.4, 0.2, 0.0}}};
     m.comm.ack_s = Mixture1::point(0.013);

@@ -36,6 +36,9 @@ struct Measure {
   bool has_truth = false;
   double true_rot_rad = 0.0;     ///< the true heading change, unwrapped next to odo_rot_rad
   double true_dist_m = 0.0;      ///< signed path length (the chord, corrected for constant curvature)
+  double true_start_theta_rad = 0.0;  ///< the true heading at the start
+  double true_dx_m = 0.0;        ///< the true displacement, world frame
+  double true_dy_m = 0.0;
   /// With a true pose on every row: each cycle's odometric and true increment
   /// along the manoeuvre's axis (ds for a straight, dtheta for a spin).
   bool truth_every_row = false;

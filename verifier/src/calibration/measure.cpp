@@ -57,6 +57,9 @@ Measure measure(const Manoeuvre& m) {
   out.true_rot_rad = out.odo_rot_rad + wrap(e.theta_rad - s.theta_rad - out.odo_rot_rad);
   const double dx = e.x_m - s.x_m;
   const double dy = e.y_m - s.y_m;
+  out.true_start_theta_rad = s.theta_rad;
+  out.true_dx_m = dx;
+  out.true_dy_m = dy;
   const double along = dx * std::cos(s.theta_rad) + dy * std::sin(s.theta_rad);
   const double chord = std::hypot(dx, dy);
   // A constant drift bends the path into an arc of angle phi: the path is

@@ -422,8 +422,37 @@ MotionFit fit_motion(const std::vector<Measure>& straights, const std::vector<Me
   rot_part_per_m /= static_cast<double>(straights.size());
   const double heading_var = std::max(0.0, heading.unit_var - rot_part_per_m);
 
+  // A spin's own forward motion (wheels whose scales differ): turning through
+  // true headings theta0 .. theta0 + Theta while moving k metres per radian
+  // along the heading displaces the robot by k g, g = (sin(theta0 + Theta) -
+  // sin(theta0), cos(theta0) - cos(theta0 + Theta)); k by least squares over
+  // the spins with true ends, then per odometric radian (times rot_scale).
+  double gg = 0.0, gd = 0.0;
+  std::size_t turn_runs = 0;
+  for (const Measure& m : spins) {
+    if (!m.has_truth) continue;
+    const double a = m.true_start_theta_rad, b = a + m.true_rot_rad;
+    const double gx = std::sin(b) - std::sin(a), gy = std::cos(a) - std::cos(b);
+    gg += gx * gx + gy * gy;
+    gd += gx * m.true_dx_m + gy * m.true_dy_m;
+    ++turn_runs;
+  }
+  const double turn_k = gg > 1e-9 ? gd / gg : 0.0;
+  double turn_sq = 0.0;
+  for (const Measure& m : spins) {
+    if (!m.has_truth) continue;
+    const double a = m.true_start_theta_rad, b = a + m.true_rot_rad;
+    const double rx = m.true_dx_m - turn_k * (std::sin(b) - std::sin(a));
+    const double ry = m.true_dy_m - turn_k * (std::cos(a) - std::cos(b));
+    turn_sq += rx * rx + ry * ry;
+  }
+  const double turn_rms = turn_runs > 0 ? std::sqrt(turn_sq / static_cast<double>(turn_runs)) : 0.0;
+  const double turn_se =
+      gg > 1e-9 && turn_runs > 1 ? std::sqrt(turn_sq / static_cast<double>(2 * turn_runs - 1) / gg) : 0.0;
+
   MotionFit out;
   MotionError& e = out.motion;
+  e.trans_per_rad_m = turn_k * rot.scale;
   e.trans_scale = trans.scale;
   e.rot_scale = rot.scale;
   e.drift_rad_per_m = drift;
@@ -445,6 +474,8 @@ MotionFit fit_motion(const std::vector<Measure>& straights, const std::vector<Me
   add_sd(out.fits, "rot_sd_per_sqrt_rad", rot.unit_var, rot.unit_var_se, rot.unit_runs, "rad/sqrt(rad)",
          rot.unit_note);
   add_sd(out.fits, "rot_rel_sd", rot.rel_var, rot.rel_var_se, rot.rel_runs, "", rot.rel_note);
+  out.fits.push_back({"trans_per_rad_m", e.trans_per_rad_m, turn_se * rot.scale, turn_rms, "m/rad", "m", turn_runs,
+                      "true forward motion per odometric radian, spins (wheels whose scales differ)"});
   out.fits.push_back({"drift_deg_per_m", drift * kRadToDeg, heading.scale_se * kRadToDeg,
                       heading.residual_rms * kRadToDeg, "deg/m", "deg", ns,
                       "true heading change per odometric metre, straight runs"});

@@ -13,15 +13,17 @@ void propagate(ErrorState& e, const CycleIncrement& inc, const MotionError& m) {
   const double c_true = std::cos(true_heading), s_true = std::sin(true_heading);
   const double c_odo = std::cos(inc.mid_theta_rad), s_odo = std::sin(inc.mid_theta_rad);
 
-  // Mean: true step minus odometric step.
-  e.mean(0) += ds * (m.trans_scale * c_true - c_odo);
-  e.mean(1) += ds * (m.trans_scale * s_true - s_odo);
+  // Mean: true step minus odometric step; a turn's own forward motion is
+  // all error (the odometry counts none).
+  const double turn_move = m.trans_per_rad_m * dth;
+  e.mean(0) += ds * (m.trans_scale * c_true - c_odo) + turn_move * c_true;
+  e.mean(1) += ds * (m.trans_scale * s_true - s_odo) + turn_move * s_true;
   e.mean(2) += (m.rot_scale - 1.0) * dth + m.drift_rad_per_m * ds;
 
   // Jacobian of the step with respect to e (only the heading error moves x, y).
   Eigen::Matrix3d f = Eigen::Matrix3d::Identity();
-  f(0, 2) = -ds * m.trans_scale * s_true;
-  f(1, 2) = ds * m.trans_scale * c_true;
+  f(0, 2) = -(ds * m.trans_scale + turn_move) * s_true;
+  f(1, 2) = (ds * m.trans_scale + turn_move) * c_true;
   // Random increments: along the true heading for distance, on the heading for rotation.
   const double var_s = m.trans_var_per_m * std::abs(ds) + m.trans_rel_var * ds * ds;
   const double var_th = m.rot_var_per_rad * std::abs(dth) + m.heading_var_per_m * std::abs(ds) + m.rot_rel_var * dth * dth;

@@ -293,6 +293,7 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
         if (const auto exit = stepper.fired(w)) {
           FinishedPath done{w, *exit, segment, job.direction, job.start, 0.0};
           done.phase_cycles = stepper.settle_phase(done.walker, *exit, &done.crossing_c, &done.step, &done.crossing_sd);
+          if (done.crossing_c >= 0.0) done.phase_var = 1.0 / 12.0;
           out.finished.push_back(done);
           break;
         }

@@ -34,6 +34,10 @@ struct FinishedPath {
   std::size_t direction = 0;     ///< the quadrature direction of that draw
   std::size_t start = 0;         ///< the start point it came from (0 when the state has one)
   double phase_cycles = 0.0;     ///< settle_phase()'s offset
+  /// The variance of where the firing falls after the crossing, in cycles^2
+  /// (1/12: uniform within the last cycle; less where the crossing hardly
+  /// varies, settle_phases()): along the last step, how far the end spreads.
+  double phase_var = 0.0;
   double crossing_c = -1.0;      ///< the crossing's fraction into the last cycle (-1: not crossed by moving toward it)
   Eigen::Vector3d step = Eigen::Vector3d::Zero();  ///< the last cycle's step before the phase move
   double crossing_sd = 0.0;      ///< the crossing time's sd in cycles from the odometry's random error

@@ -178,6 +178,11 @@ struct Track {
   Eigen::Matrix2d spread_points_within = Eigen::Matrix2d::Zero();
   Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
   std::vector<Eigen::Vector2d> spread_points;  ///< the points `spread` is the covariance of (may be empty)
+  /// The last leg's spread_points once each path has braked to rest on its
+  /// own, and what they average away (StateAnalysis::rest_offsets): they
+  /// replace spread_points on entering a state that stops the robot.
+  std::vector<Eigen::Vector2d> rest_points;
+  Eigen::Matrix2d rest_points_within = Eigen::Matrix2d::Zero();
   StateAnalysis analysis;         ///< of the current state
   /// Where the previous state left the robot (equally likely points around
   /// `base`; state_analysis.hpp's StartPoint): the current state's paths
@@ -362,6 +367,21 @@ class Sequencer {
     track.since_entry = Mixture1::point(0.0);
     track.since_hidden = 0.0;
     if (trace) track.trace.push_back(spec.states[state].name);
+    if (!track.rest_points.empty() && brakes_to_rest(spec, state)) {
+      // The points are relative to where the mean path comes to rest; their
+      // mean is how much farther the paths run out on average (the braking
+      // distance grows with the square of the speed). The base takes that
+      // along, so that the points stay centred on it and the moment-matched
+      // final position is the mixture's.
+      Eigen::Vector2d shift = Eigen::Vector2d::Zero();
+      for (const Eigen::Vector2d& p : track.rest_points) shift += p / static_cast<double>(track.rest_points.size());
+      for (Eigen::Vector2d& p : track.rest_points) p -= shift;
+      track.base.x_m += shift.x();
+      track.base.y_m += shift.y();
+      track.spread_points = std::move(track.rest_points);
+      track.spread_points_within = track.rest_points_within;
+    }
+    track.rest_points.clear();
     if (record_entries_) entry_errors_.emplace(std::make_pair(i, state), track.error);
 
     // Notify: the message goes out on entry.
@@ -931,6 +951,8 @@ class Sequencer {
       t.spread = t.analysis.end_spread;
       t.spread_points = t.analysis.end_offsets;
       t.spread_points_within = t.analysis.end_offsets_within;
+      t.rest_points = t.analysis.rest_offsets;
+      t.rest_points_within = t.analysis.rest_offsets_within;
       t.extra_cov.setZero();
     }
     const double now = b.clock.mean();
@@ -1152,6 +1174,14 @@ class Sequencer {
         }
       } else {
         ta.spread_points.clear();
+      }
+      if (ta.rest_points.size() == tb.rest_points.size()) {
+        for (std::size_t j = 0; j < ta.rest_points.size(); ++j) {
+          ta.rest_points[j] = (wa * ta.rest_points[j] + wb * tb.rest_points[j]) / w;
+        }
+        ta.rest_points_within = (wa * ta.rest_points_within + wb * tb.rest_points_within) / w;
+      } else {
+        ta.rest_points.clear();
       }
     }
     for (std::size_t m = 0; m < a.delivery.size(); ++m) {

@@ -306,25 +306,31 @@ Mixture1 redrawn_duration_by_draw(const std::vector<double>& values, const std::
 }
 
 /// `directions` equal-weight points standing for the finished paths' end
-/// positions (relative to their weighted mean): the paths sorted by their
-/// bearing from the goal (their ends lie on the AtGoal circle), cut into
-/// slabs of equal probability, each slab's weighted mean.
+/// positions (relative to `mean`): the paths sorted by their bearing from the
+/// goal (their ends lie on the AtGoal circle), cut into slabs of equal
+/// probability, each slab's weighted mean. `moved` (empty, or one per path)
+/// is added to each path's end first: where each comes to rest.
 std::vector<Eigen::Vector2d> equal_weight_ends(const std::vector<FinishedPath>& done, const Eigen::Vector2d& goal,
                                                const Eigen::Vector2d& mean, const Eigen::Vector2d& error_mean,
-                                               std::size_t directions) {
+                                               std::size_t directions, const std::vector<Eigen::Vector2d>& moved = {}) {
   std::vector<Eigen::Vector2d> out;
   double total = 0.0;
   for (const FinishedPath& p : done) total += p.walker.weight;
   if (done.empty() || !(total > 0.0)) return out;
+  const auto end_of = [&](std::size_t i) {
+    // The true end (odometric end plus the error's deviation).
+    const Eigen::Vector2d at =
+        Eigen::Vector2d(done[i].walker.q.x_m, done[i].walker.q.y_m) + done[i].walker.error.mean.head<2>() - error_mean;
+    return moved.empty() ? at : Eigen::Vector2d(at + moved[i]);
+  };
   const Eigen::Vector2d towards = mean - goal;
   const double centre = std::atan2(towards.y(), towards.x());
   std::vector<std::pair<double, std::size_t>> order;
   for (std::size_t i = 0; i < done.size(); ++i) {
-    // The bearing of the true end (odometric end plus the error's deviation):
-    // paths whose errors differ (a turn made one way or the other) end on
-    // different sides, and must not be averaged into one slab.
-    const Eigen::Vector2d at =
-        Eigen::Vector2d(done[i].walker.q.x_m, done[i].walker.q.y_m) + done[i].walker.error.mean.head<2>() - error_mean;
+    // Sorted by the true end's bearing: paths whose errors differ (a turn
+    // made one way or the other) end on different sides, and must not be
+    // averaged into one slab.
+    const Eigen::Vector2d at = end_of(i);
     const double a = std::atan2(at.y() - goal.y(), at.x() - goal.x()) - centre;
     order.emplace_back(std::remainder(a, 2.0 * kPi), i);
   }
@@ -339,7 +345,7 @@ std::vector<Eigen::Vector2d> equal_weight_ends(const std::vector<FinishedPath>& 
     (void)angle;
     const FinishedPath& p = done[i];
     const double c1 = c0 + p.walker.weight;
-    const Eigen::Vector2d at = Eigen::Vector2d(p.walker.q.x_m, p.walker.q.y_m) + p.walker.error.mean.head<2>() - error_mean;
+    const Eigen::Vector2d at = end_of(i);
     for (std::size_t k = 0; k < directions; ++k) {
       const double overlap = std::min(c1, static_cast<double>(k + 1) * slab) - std::max(c0, static_cast<double>(k) * slab);
       if (overlap > 0.0) {
@@ -385,6 +391,7 @@ void settle_phases(std::vector<FinishedPath>& done, std::size_t directions, std:
     // The odometry's own jitter moves the crossing too, independently.
     sd = std::hypot(sd, p->crossing_sd);
     offsets[j] = crossing(*p) + expected_check_gap(crossing(*p), sd) - static_cast<double>(p->walker.cycles);
+    p->phase_var = check_gap_variance(crossing(*p), sd);
   }
   for (std::size_t j = 0; j < n; ++j) {
     FinishedPath* p = by_direction[j];
@@ -408,6 +415,65 @@ std::vector<StartPoint> carried_along(const std::vector<StartPoint>& points, con
     p.q.trans_mps = to.trans_mps;
     p.q.rot_radps = to.rot_radps;
     out.push_back(p);
+  }
+  return out;
+}
+
+/// How far the odometric base moves from q until it is at rest with both
+/// velocities commanded to zero: the run-out of a robot stopped in a final or
+/// still state, braked as analyze_still brakes it.
+Eigen::Vector2d run_out(BaseState q, const Kinematics& k) {
+  const double x0 = q.x_m, y0 = q.y_m;
+  for (int cycle = 0; cycle < 1000 && !at_rest(q); ++cycle) step_cycle(q, 0.0, 0.0, k);
+  return {q.x_m - x0, q.y_m - y0};
+}
+
+/// Where finished paths come to rest, each braking on its own from the speed
+/// and heading it fired at: `centre` is their weighted mean (true positions:
+/// odometric end plus run-out plus the error's deviation from the paths'
+/// mean error), `offsets` equally likely points relative to it (one per path
+/// in direction order when `one_per_direction`, else equal_weight_ends'
+/// slabs), `within` the spread the points average away.
+struct RestPoints {
+  std::vector<Eigen::Vector2d> offsets;
+  Eigen::Matrix2d within = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+};
+
+RestPoints rest_points(const std::vector<FinishedPath>& done, bool one_per_direction, const Eigen::Vector2d& goal,
+                       std::size_t directions, const Kinematics& k) {
+  RestPoints out;
+  double total = 0.0;
+  Eigen::Vector2d error_mean = Eigen::Vector2d::Zero();
+  for (const FinishedPath& p : done) {
+    total += p.walker.weight;
+    error_mean += p.walker.weight * p.walker.error.mean.head<2>();
+  }
+  if (done.empty() || !(total > 0.0)) return out;
+  error_mean /= total;
+  std::vector<Eigen::Vector2d> moved, at;
+  for (const FinishedPath& p : done) {
+    moved.push_back(run_out(p.walker.q, k));
+    at.push_back(Eigen::Vector2d(p.walker.q.x_m, p.walker.q.y_m) + p.walker.error.mean.head<2>() - error_mean + moved.back());
+    out.centre += (p.walker.weight / total) * at.back();
+  }
+  if (one_per_direction) {
+    for (const Eigen::Vector2d& x : at) out.offsets.push_back(x - out.centre);
+  } else {
+    out.offsets = equal_weight_ends(done, goal, out.centre, error_mean, directions, moved);
+  }
+  Eigen::Matrix2d all = Eigen::Matrix2d::Zero(), shown = Eigen::Matrix2d::Zero();
+  for (std::size_t j = 0; j < done.size(); ++j) {
+    all += (done[j].walker.weight / total) * (at[j] - out.centre) * (at[j] - out.centre).transpose();
+  }
+  for (const Eigen::Vector2d& d : out.offsets) shown += d * d.transpose() / static_cast<double>(out.offsets.size());
+  out.within = floored_psd(all - shown);
+  // Where within its last cycle each path fires (the check comes 0..1 cycle
+  // after the crossing): a spread along that cycle's step, 4 cm long at
+  // 0.4 m/s, which the paths' ends at their expected firing do not show.
+  for (const FinishedPath& p : done) {
+    const Eigen::Vector2d step = p.step.head<2>();
+    out.within += (p.walker.weight / total) * p.phase_var * step * step.transpose();
   }
   return out;
 }
@@ -682,6 +748,35 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
     }
     for (const Eigen::Vector2d& d : a.end_offsets) shown += d * d.transpose() / static_cast<double>(a.end_offsets.size());
     a.end_offsets_within = floored_psd(all - shown);
+
+    // Where each path comes to rest when its exit stops the robot (a still
+    // or final state): its own run-out, from the speed and heading it fired
+    // at. The next state brakes the mean (a.end) alike for every point, which
+    // put every path's end the same run-out along and lost the spread of the
+    // braking distance (a NOISE pushing forward or aside at the AtGoal circle
+    // fires at 0.15 or 0.36 m/s: 2 or 11 cm of run-out): the points are
+    // relative to where the mean comes to rest.
+    const bool stops_after =
+        std::any_of(robot.states[state].outgoing.begin(), robot.states[state].outgoing.end(),
+                    [&](std::size_t t) { return brakes_to_rest(robot, robot.transitions[t].to); });
+    if (stops_after) {
+      const Eigen::Vector2d goal(go->goal.x_m, go->goal.y_m);
+      const Kinematics& kin = ctx.model->kinematics;
+      const RestPoints at_ends = rest_points(ends->finished, ends->redraws == 0 && entries.size() == 1, goal, directions, kin);
+      // Where the paths come to rest is centred where `ends` says (the held
+      // paths when one draw spans the approach: where the circle is crossed);
+      // but the speed and heading at the crossing are a redrawn NOISE's, not
+      // the first draw's held to the end: when NOISE is redrawn in the leg,
+      // the spread is the segment quadrature's. Measured on
+      // tests/data/accuracy/noise_at_goal (held 40 cycles, once or twice
+      // redrawn; 1,000 runs): the held paths' spread gave a radius curve 0.33
+      // off, the segment quadrature's ...
+      const bool redrawn_shape = ends != &quad && quad.redraws > 0 && !quad.finished.empty();
+      const RestPoints shape = redrawn_shape ? rest_points(quad.finished, false, goal, directions, kin) : at_ends;
+      const Eigen::Vector2d centre = at_ends.centre - (mean_xy + run_out(a.end, kin));
+      for (const Eigen::Vector2d& d : shape.offsets) a.rest_offsets.push_back(d + centre);
+      a.rest_offsets_within = shape.within;
+    }
   }
 
   // Durations per exit, in whole cycles (the executive checks its triggers
@@ -818,6 +913,15 @@ StateAnalysis analyze_state(const StateContext& context, std::size_t state_index
     a = analyze_still(context, state_index, start, error_start, start_points);
   }
   return a;
+}
+
+bool brakes_to_rest(const mission::RobotSpec& robot, std::size_t state) {
+  if (robot.is_final(state)) return true;
+  const mission::BehaviorKind kind = robot.states[state].kind();
+  if (kind == mission::BehaviorKind::go_to_guarded || kind == mission::BehaviorKind::spin) return false;
+  // analyze_still brakes an acknowledgement-timed state only for its most
+  // likely length, which may end before the robot is at rest.
+  return !has_trigger_kind(robot, state, mission::TriggerKind::message_sent);
 }
 
 StateAnalysis analyze_final(const StateContext& context, std::size_t state_index, const BaseState& start,

@@ -76,6 +76,13 @@ struct StateAnalysis {
   /// The true ends' spread that end_offsets do not show (a redrawn NOISE's
   /// many paths are averaged into `directions` slabs).
   Eigen::Matrix2d end_offsets_within = Eigen::Matrix2d::Zero();
+  /// The same paths' true positions once each has braked to rest on its own
+  /// (from its speed and heading at the firing), relative to where the mean
+  /// end (`end`) comes to rest, and what they average away: filled when an
+  /// exit leads to a state that stops the robot (the sequencer uses them on
+  /// entering one), empty otherwise.
+  std::vector<Eigen::Vector2d> rest_offsets;
+  Eigen::Matrix2d rest_offsets_within = Eigen::Matrix2d::Zero();
   ErrorState error;                   ///< the true pose's error at the end
   /// The paths' own errors at the end (their residuals after the regression
   /// above), kept apart as a mixture (engine/error_mixture.hpp); `error.cov`
@@ -123,6 +130,12 @@ inline constexpr std::size_t kStartPointsEntered = 4;
 /// weighted mean is kept.
 std::vector<StartPoint> equal_weight_points(const std::vector<StartPoint>& points, const std::vector<double>& weights,
                                             const std::vector<double>& key, std::size_t n);
+
+/// Whether entering `state` stops the robot until it is at rest (a final
+/// state, or a still one that is not timed by an acknowledgement), so that
+/// the previous leg's paths each run out their own braking
+/// (StateAnalysis::rest_offsets).
+bool brakes_to_rest(const mission::RobotSpec& robot, std::size_t state);
 
 /// Final state `state_index` of the robot, entered with odometric base `start`
 /// (its velocities those at the firing) and error `error_start`: the executive

@@ -18,4 +18,11 @@ namespace p3at::verifier::engine {
 /// integers within 8 sd).
 double expected_check_gap(double t, double sd);
 
+/// Var[ceil(X) - X] for X ~ N(t, sd^2): 0 for sd = 0 (one deterministic
+/// check), tending to 1/12 (a uniform gap) as sd grows, and up to 1/4 in
+/// between when the crossing straddles a check (the firing is at one check
+/// or the next). Times the last cycle's step, it is how far along that step
+/// the firing pose spreads.
+double check_gap_variance(double t, double sd);
+
 }  // namespace p3at::verifier::engine

@@ -34,6 +34,7 @@ constexpr Range kScale{0.0, 10.0, true, false};
 constexpr Range kSd{0.0, 100.0};
 constexpr Range kRelativeSd{0.0, 10.0};
 constexpr Range kDrift{-360.0, 360.0};
+constexpr Range kTurnMove{-1.0, 1.0};
 constexpr Range kCycle{0.0, 10.0, true, false};
 constexpr Range kWeight{0.0, 1e6, true, false};
 constexpr Range kDelayMs{0.0, 1e7};
@@ -71,10 +72,12 @@ MotionError read_motion(const MapReader& parent) {
   MotionError e;
   if (!parent.has("motion")) return e;
   const MapReader m = parent.map_at("motion", {"trans_scale", "rot_scale", "drift_deg_per_m", "trans_sd_per_sqrt_m",
-                                      "rot_sd_per_sqrt_rad", "heading_sd_per_sqrt_m", "trans_rel_sd", "rot_rel_sd"});
+                                      "rot_sd_per_sqrt_rad", "heading_sd_per_sqrt_m", "trans_rel_sd", "rot_rel_sd",
+                                      "trans_per_rad_m"});
   using models_detail::sd_to_var;
   e.trans_scale = m.number_or("trans_scale", kScale, e.trans_scale);
   e.rot_scale = m.number_or("rot_scale", kScale, e.rot_scale);
+  if (m.has("trans_per_rad_m")) e.trans_per_rad_m = m.number("trans_per_rad_m", kTurnMove);
   if (m.has("drift_deg_per_m")) e.drift_rad_per_m = models_detail::degrees_to_radians(m.number("drift_deg_per_m", kDrift));
   if (m.has("trans_sd_per_sqrt_m")) e.trans_var_per_m = sd_to_var(m.number("trans_sd_per_sqrt_m", kSd));
   if (m.has("rot_sd_per_sqrt_rad")) e.rot_var_per_rad = sd_to_var(m.number("rot_sd_per_sqrt_rad", kSd));

@@ -139,6 +139,7 @@ std::string write_models(const Models& models) {
     out += "      trans_scale: " + plain(e.trans_scale, "trans_scale") + "\n";
     out += "      rot_scale: " + plain(e.rot_scale, "rot_scale") + "\n";
     out += "      drift_deg_per_m: " + degrees(e.drift_rad_per_m, "drift_rad_per_m") + "\n";
+    if (e.trans_per_rad_m != 0.0) out += "      trans_per_rad_m: " + plain(e.trans_per_rad_m, "trans_per_rad_m") + "\n";
     out += "      trans_sd_per_sqrt_m: " + sd_of_var(e.trans_var_per_m, "trans_var_per_m") + "\n";
     out += "      rot_sd_per_sqrt_rad: " + sd_of_var(e.rot_var_per_rad, "rot_var_per_rad") + "\n";
     out += "      heading_sd_per_sqrt_m: " + sd_of_var(e.heading_var_per_m, "heading_var_per_m") + "\n";

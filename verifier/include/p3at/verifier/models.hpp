@@ -43,6 +43,7 @@ struct Kinematics {
 /// from the odometric motion the executive steers by, per control cycle with
 /// odometric increments (ds metres along the heading, dth radians):
 ///   true ds  = trans_scale * ds + e_s,   var(e_s)  = trans_var_per_m * |ds|
+///   true ds  also gains trans_per_rad_m * dth (a turn's own forward motion),
 ///   true dth = rot_scale * dth + drift_rad_per_m * ds + e_th,
 ///              var(e_th) = rot_var_per_rad * |dth| + heading_var_per_m * |ds|
 ///                          + rot_rel_var * dth^2
@@ -56,6 +57,12 @@ struct MotionError {
   double trans_scale = 1.0;
   double rot_scale = 1.0;
   double drift_rad_per_m = 0.0;
+  /// Metres the robot really moves along its heading per radian the odometry
+  /// turns (signed: left turns forward when positive). Wheels whose scales
+  /// differ do not cancel in a turn: a P3-AT whose right wheel reads 6 %
+  /// less than its left moves about 9 mm per radian of spin, 1.7 cm over a
+  /// 107-degree turn, which the odometry never sees.
+  double trans_per_rad_m = 0.0;
   double trans_var_per_m = 0.0;     ///< m^2 per metre travelled
   double rot_var_per_rad = 0.0;     ///< rad^2 per radian turned
   double heading_var_per_m = 0.0;   ///< rad^2 per metre travelled
