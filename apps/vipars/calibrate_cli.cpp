@@ -24,14 +24,20 @@ void register_calibrate(CLI::App& app, int& exit_status) {
   cmd->add_option("--from-log", o->from_log, "Fit a calibration log (docs/calibration.md) instead of driving");
   cmd->add_option("--robots", o->robots, "Robots to calibrate (default: every robot of the world or log)")
       ->delimiter(',');
+  CLI::Option* mission = cmd->add_option(
+      "--mission", o->mission_file,
+      "Mission file: calibrate each of its robots at its own max_speed_mps and first Spin's rate (instead of "
+      "--speed and --spin-rate; its robots are the default --robots)")->check(CLI::ExistingFile);
   cmd->add_option("--runs", o->plan.runs, "Runs per robot (each: 2 straights and 4 spins)")->check(CLI::Range(2, 100000));
   cmd->add_option("--speed", o->plan.speed_mps, "Straight-run speed, m/s: the mission speed (half of the straights at half of it)")
-      ->check(CLI::Range(0.01, 2.0));
+      ->check(CLI::Range(0.01, 2.0))
+      ->excludes(mission);
   cmd->add_option("--distance", o->plan.distance_m, "Straight-run length, m (odometric)")->check(CLI::Range(0.2, 100.0));
   cmd->add_option("--spin-deg", o->plan.spin_deg, "Spin angle, degrees (odometric; 180 brings each run back)")
       ->check(CLI::Range(10.0, 720.0));
   cmd->add_option("--spin-rate", o->plan.spin_rate_degps, "Spin rate, deg/s: the mission's (half of the spins at half of it)")
-      ->check(CLI::Range(1.0, 300.0));
+      ->check(CLI::Range(1.0, 300.0))
+      ->excludes(mission);
   cmd->add_option("--messages", o->messages, "Notifications to time over the simulated team link")
       ->check(CLI::Range(0, 1000000));
   cmd->add_option("--peer-phase", o->peer_phase,

@@ -9,12 +9,14 @@
 // (The flags: apps/vipars/calibrate_cli.cpp; the run: here.)
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "p3at/calibration_rig/calibrate_drive.hpp"
@@ -23,6 +25,8 @@
 #include "p3at/calibration_rig/calibrate.hpp"
 #include "p3at/common/number_format.hpp"
 #include "p3at/common/vipars_exit.hpp"
+#include "p3at/mission/loader.hpp"
+#include "p3at/mission/mission.hpp"
 #include "p3at/sim/p3at_model.hpp"
 #include "p3at/sim/sim_drive_base.hpp"
 #include "p3at/sim/world.hpp"
@@ -46,6 +50,7 @@ std::string command_line(const CalibrateOptions& o) {
     c += " " + flag + " " + (plain ? value : quoted + "'");
   };
   if (!o.world_file.empty()) add("--world", o.world_file);
+  if (!o.mission_file.empty()) add("--mission", o.mission_file);
   if (!o.robots.empty()) {
     std::string list;
     for (const std::string& r : o.robots) list += (list.empty() ? "" : ",") + r;
@@ -58,10 +63,10 @@ std::string command_line(const CalibrateOptions& o) {
     if (!o.truth_csv.empty()) add("--truth-csv", o.truth_csv);
     if (!o.hal_url.empty() && o.plan.speedup != 1.0) add("--speedup", format_general(o.plan.speedup));
     add("--runs", std::to_string(o.plan.runs));
-    add("--speed", format_general(o.plan.speed_mps));
+    if (o.mission_file.empty()) add("--speed", format_general(o.plan.speed_mps));
     add("--distance", format_general(o.plan.distance_m));
     add("--spin-deg", format_general(o.plan.spin_deg));
-    add("--spin-rate", format_general(o.plan.spin_rate_degps));
+    if (o.mission_file.empty()) add("--spin-rate", format_general(o.plan.spin_rate_degps));
     if (o.hal_url.empty()) {
       add("--messages", std::to_string(o.messages));
       add("--peer-phase", o.peer_phase);
@@ -72,10 +77,20 @@ std::string command_line(const CalibrateOptions& o) {
   return c;
 }
 
+// The plan for one robot: the flags', or with a mission the robot's own.
+ManoeuvrePlan plan_for(const std::string& robot, const ManoeuvrePlan& flags, const std::optional<mission::Mission>& m) {
+  if (m) {
+    for (const mission::RobotSpec& spec : m->robots) {
+      if (spec.name == robot) return plan_for_robot(spec, flags);
+    }
+  }
+  return flags;
+}
+
 // Each robot in a wall-free world of its own: calibration needs open floor,
 // and one robot's runs must not meet another's.
-void drive_simulated(const sim::WorldConfig& world, const std::vector<std::string>& robots, const ManoeuvrePlan& plan,
-                     std::uint64_t seed, verifier::CalibrationLog& log) {
+void drive_simulated(const sim::WorldConfig& world, const std::vector<std::string>& robots, const ManoeuvrePlan& flags,
+                     const std::optional<mission::Mission>& mission, std::uint64_t seed, verifier::CalibrationLog& log) {
   std::int64_t next_id = 0;
   for (std::size_t i = 0; i < robots.size(); ++i) {
     sim::WorldConfig open;
@@ -90,7 +105,7 @@ void drive_simulated(const sim::WorldConfig& world, const std::vector<std::strin
       const sim::Pose& p = w.robot(0).true_pose();
       return verifier::TruePose{p.x_m, p.y_m, p.theta_rad};
     };
-    drive_manoeuvres(base, robots[i], plan, truth, next_id, log.manoeuvres);
+    drive_manoeuvres(base, robots[i], plan_for(robots[i], flags, mission), truth, next_id, log.manoeuvres);
   }
 }
 
@@ -160,6 +175,30 @@ int run_calibrate(CalibrateOptions o) {
     return kExitBadInput;
   }
 
+  std::optional<mission::Mission> mission;
+  if (!o.mission_file.empty()) {
+    if (!o.from_log.empty()) {
+      std::fprintf(stderr, "vipars calibrate: --mission sets the runs' speeds: it does not apply to --from-log\n");
+      return kExitBadInput;
+    }
+    try {
+      mission = mission::load_mission_file(o.mission_file);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "vipars calibrate: %s\n", e.what());
+      return kExitBadInput;
+    }
+    if (o.robots.empty() && o.hal_url.empty()) {
+      for (const mission::RobotSpec& r : mission->robots) o.robots.push_back(r.name);
+    }
+    for (const std::string& name : o.robots) {
+      const auto named = [&name](const mission::RobotSpec& r) { return r.name == name; };
+      if (std::none_of(mission->robots.begin(), mission->robots.end(), named)) {
+        std::fprintf(stderr, "vipars calibrate: %s has no robot named '%s'\n", o.mission_file.c_str(), name.c_str());
+        return kExitBadInput;
+      }
+    }
+  }
+
   std::optional<sim::WorldConfig> world;
   if (!o.world_file.empty()) {
     try {
@@ -176,7 +215,8 @@ int run_calibrate(CalibrateOptions o) {
     if (!o.from_log.empty()) {
       log = verifier::load_calibration_log(o.from_log);
     } else if (!o.hal_url.empty()) {
-      drive_over_arcos(o.hal_url, robots.front(), o.plan, o.truth_csv, log.manoeuvres);
+      drive_over_arcos(o.hal_url, robots.front(), plan_for(robots.front(), o.plan, mission), o.truth_csv,
+                       log.manoeuvres);
     } else {
       if (robots.empty()) {
         for (const sim::RobotConfig& r : world->robots) robots.push_back(r.name);
@@ -190,7 +230,7 @@ int run_calibrate(CalibrateOptions o) {
       }
       const std::uint64_t seed = o.seed.value_or(world->seed.value_or(1));
       o.seed = seed;  // written into generated_by: the file says how to make it again
-      drive_simulated(*world, robots, o.plan, seed, log);
+      drive_simulated(*world, robots, o.plan, mission, seed, log);
       MessagePlan messages;
       messages.count = o.messages;
       messages.cycle_s = static_cast<double>(sim::kCycleUs) / 1e6;

@@ -5,9 +5,11 @@
 
 #include "p3at/calibration_rig/calibrate_drive.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <variant>
 
 namespace p3at::vipars {
 namespace {
@@ -166,6 +168,17 @@ void drive_manoeuvres(hal::DriveBase& base, const std::string& robot, const Mano
     for (const Step& step : steps) out.push_back(driver.run(step, next_id++));
   }
   (void)base.stop();
+}
+
+ManoeuvrePlan plan_for_robot(const mission::RobotSpec& robot, ManoeuvrePlan flags) {
+  flags.speed_mps = std::clamp(robot.max_speed_mps, 0.01, 2.0);
+  for (const mission::State& s : robot.states) {
+    if (s.kind() == mission::BehaviorKind::spin) {
+      flags.spin_rate_degps = std::clamp(std::abs(std::get<mission::SpinParams>(s.behavior).rate_deg_s), 1.0, 300.0);
+      break;
+    }
+  }
+  return flags;
 }
 
 }  // namespace p3at::vipars

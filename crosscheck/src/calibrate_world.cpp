@@ -29,16 +29,9 @@ CalibratedModels calibrate_from_world(const mission::Mission& mission, const sim
     const auto it = std::find_if(world.robots.begin(), world.robots.end(),
                                  [&spec](const sim::RobotConfig& r) { return r.name == spec.name; });
     if (it == world.robots.end()) throw std::runtime_error("the world has no robot named '" + spec.name + "'");
-    vipars::ManoeuvrePlan plan;
-    plan.runs = runs;
-    // The mission's speed (the rig also drives half of it) and its first Spin's rate.
-    plan.speed_mps = std::clamp(spec.max_speed_mps, 0.01, 2.0);
-    for (const mission::State& s : spec.states) {
-      if (s.kind() == mission::BehaviorKind::spin) {
-        plan.spin_rate_degps = std::clamp(std::abs(std::get<mission::SpinParams>(s.behavior).rate_deg_s), 1.0, 300.0);
-        break;
-      }
-    }
+    vipars::ManoeuvrePlan defaults;
+    defaults.runs = runs;
+    const vipars::ManoeuvrePlan plan = vipars::plan_for_robot(spec, defaults);
     note += " " + spec.name + " " + format_general(plan.speed_mps, 3) + " m/s and " + format_general(plan.spin_rate_degps, 3) +
             " deg/s;";
     sim::WorldConfig open;

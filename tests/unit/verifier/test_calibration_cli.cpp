@@ -228,3 +228,58 @@ TEST_CASE("bad input: exit 2 and a message that names the problem") {
   CHECK(blind.status == 2);
   CHECK(blind.err.find("--log-out") != std::string::npos);
 }
+
+TEST_CASE("--mission: each robot calibrated at its own mission speed and spin rate (issue 13 item 9)") {
+  Scratch s;
+  // Two robots at different speeds; only `pulls_right` spins, at 25 deg/s.
+  std::ofstream(s.dir / "mission.yaml") << R"(mission: {name: two_speeds}
+criteria: {tmax_s: 60, rmax_m: 1, threshold: 0.8}
+robots:
+  - name: wheels
+    start: {x_m: 0, y_m: -0.7, theta_deg: 0}
+    hal: tcp://127.0.0.1:8101
+    max_speed_mps: 0.2
+    states:
+      - {name: leg, behavior: GoToGuarded, params: {goal: [2, -0.7]}}
+      - {name: done, behavior: Stop}
+    transitions:
+      - {from: leg, to: done, trigger: AtGoal, params: {radius_m: 0.3}}
+  - name: pulls_right
+    start: {x_m: 0, y_m: 0.7, theta_deg: 0}
+    hal: tcp://127.0.0.1:8102
+    max_speed_mps: 0.5
+    states:
+      - {name: turn, behavior: Spin, params: {rate_deg_s: 25}}
+      - {name: leg, behavior: GoToGuarded, params: {goal: [2, 0.7]}}
+      - {name: done, behavior: Stop}
+    transitions:
+      - {from: turn, to: leg, trigger: HasTurned, params: {angle_deg: 90}}
+      - {from: leg, to: done, trigger: AtGoal, params: {radius_m: 0.3}}
+)";
+  const Outcome o = vipars(s.dir, "calibrate --world world.yaml --mission mission.yaml --runs 4 --messages 50 --out models.yaml");
+  INFO(o.err);
+  REQUIRE(o.status == 0);
+  const p3at::verifier::Models m = p3at::verifier::load_models_file((s.dir / "models.yaml").string());
+  REQUIRE(m.find_robot("wheels") != nullptr);
+  REQUIRE(m.find_robot("pulls_right") != nullptr);
+  CHECK(m.find_robot("wheels")->kinematics.calibrated_speed_mps == doctest::Approx(0.2));
+  CHECK(m.find_robot("pulls_right")->kinematics.calibrated_speed_mps == doctest::Approx(0.5));
+  // The header regenerates it with the mission, not one --speed for both.
+  CHECK(m.generated_by.find("--mission mission.yaml") != std::string::npos);
+  CHECK(m.generated_by.find("--speed") == std::string::npos);
+  // The verifier then knows both speeds: no robot above its calibration.
+  const Outcome v = vipars(s.dir, "verify mission.yaml --models models.yaml --json");
+  CHECK(v.out.find("speed-above-calibration") == std::string::npos);
+  CHECK(v.out.find("speed-calibration-unknown") == std::string::npos);
+  // With one --speed for the team (0.2), the faster robot is flagged.
+  REQUIRE(vipars(s.dir, "calibrate --world world.yaml --speed 0.2 --runs 4 --messages 50 --out team.yaml").status == 0);
+  CHECK(vipars(s.dir, "verify mission.yaml --models team.yaml --json").out.find("speed-above-calibration") !=
+        std::string::npos);
+
+  // Bad input: a mission robot the world lacks, --speed beside --mission, --mission with --from-log.
+  const Outcome nobody = vipars(s.dir, "calibrate --world world.yaml --mission mission.yaml --robots nobody --runs 2");
+  CHECK(nobody.status == 2);
+  CHECK(nobody.err.find("mission.yaml has no robot named 'nobody'") != std::string::npos);
+  CHECK(vipars(s.dir, "calibrate --world world.yaml --mission mission.yaml --speed 0.3").status == 2);
+  CHECK(vipars(s.dir, "calibrate --from-log x.csv --mission mission.yaml").status == 2);
+}

@@ -19,6 +19,11 @@ struct CalibrateOptions {
   std::string from_log;
   std::string truth_csv;
   std::vector<std::string> robots;
+  /// A mission file: each of its robots is calibrated at its own
+  /// max_speed_mps and its first Spin's rate (issue 13 item 9), in place of
+  /// the one --speed / --spin-rate for all; its robots are the default
+  /// --robots.
+  std::string mission_file;
   ManoeuvrePlan plan;
   std::size_t messages = 400;
   std::string peer_phase = "lockstep";

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "p3at/hal/drive_base.hpp"
+#include "p3at/mission/mission.hpp"
 #include "p3at/verifier/calibration.hpp"
 
 namespace p3at::vipars {
@@ -35,6 +36,11 @@ struct ManoeuvrePlan {
   /// --speedup over ARCOS (rows are stamped in the robot's time), else 1.
   double speedup = 1.0;
 };
+
+/// `flags` for a mission robot: its max_speed_mps and its first Spin's rate
+/// (the runs also drive half of each), so that it is calibrated at the
+/// speeds its mission uses (issue 13 item 9).
+ManoeuvrePlan plan_for_robot(const mission::RobotSpec& robot, ManoeuvrePlan flags);
 
 /// The true pose now, if known. `at_rest` is true at a manoeuvre's first and
 /// last rows (a tape measure can only measure a robot standing still).
