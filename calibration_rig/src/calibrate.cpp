@@ -9,14 +9,12 @@
 // (The flags: apps/vipars/calibrate_cli.cpp; the run: here.)
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
-#include <variant>
 #include <vector>
 
 #include "p3at/calibration_rig/calibrate_drive.hpp"

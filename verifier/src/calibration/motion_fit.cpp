@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "p3at/common/number_format.hpp"
 
 #include "calibration/fit_parts.hpp"
@@ -427,25 +429,23 @@ MotionFit fit_motion(const std::vector<Measure>& straights, const std::vector<Me
   // along the heading displaces the robot by k g, g = (sin(theta0 + Theta) -
   // sin(theta0), cos(theta0) - cos(theta0 + Theta)); k by least squares over
   // the spins with true ends, then per odometric radian (times rot_scale).
+  struct TurnMove {
+    Eigen::Vector2d g, d;  // the unit-k displacement and the true one
+  };
+  std::vector<TurnMove> turns;
   double gg = 0.0, gd = 0.0;
-  std::size_t turn_runs = 0;
   for (const Measure& m : spins) {
     if (!m.has_truth) continue;
     const double a = m.true_start_theta_rad, b = a + m.true_rot_rad;
-    const double gx = std::sin(b) - std::sin(a), gy = std::cos(a) - std::cos(b);
-    gg += gx * gx + gy * gy;
-    gd += gx * m.true_dx_m + gy * m.true_dy_m;
-    ++turn_runs;
+    const TurnMove t{{std::sin(b) - std::sin(a), std::cos(a) - std::cos(b)}, {m.true_dx_m, m.true_dy_m}};
+    gg += t.g.squaredNorm();
+    gd += t.g.dot(t.d);
+    turns.push_back(t);
   }
+  const std::size_t turn_runs = turns.size();
   const double turn_k = gg > 1e-9 ? gd / gg : 0.0;
   double turn_sq = 0.0;
-  for (const Measure& m : spins) {
-    if (!m.has_truth) continue;
-    const double a = m.true_start_theta_rad, b = a + m.true_rot_rad;
-    const double rx = m.true_dx_m - turn_k * (std::sin(b) - std::sin(a));
-    const double ry = m.true_dy_m - turn_k * (std::cos(a) - std::cos(b));
-    turn_sq += rx * rx + ry * ry;
-  }
+  for (const TurnMove& t : turns) turn_sq += (t.d - turn_k * t.g).squaredNorm();
   const double turn_rms = turn_runs > 0 ? std::sqrt(turn_sq / static_cast<double>(turn_runs)) : 0.0;
   const double turn_se =
       gg > 1e-9 && turn_runs > 1 ? std::sqrt(turn_sq / static_cast<double>(2 * turn_runs - 1) / gg) : 0.0;

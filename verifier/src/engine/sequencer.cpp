@@ -1168,21 +1168,16 @@ class Sequencer {
       }
       // Point j of both is the end of the same NOISE direction: blend them
       // pointwise; lists that do not match fall back to the Gaussian.
-      if (ta.spread_points.size() == tb.spread_points.size()) {
-        for (std::size_t j = 0; j < ta.spread_points.size(); ++j) {
-          ta.spread_points[j] = (wa * ta.spread_points[j] + wb * tb.spread_points[j]) / w;
+      const auto blend_points = [&](std::vector<Eigen::Vector2d>& pa, const std::vector<Eigen::Vector2d>& pb) {
+        if (pa.size() != pb.size()) {
+          pa.clear();
+          return;
         }
-      } else {
-        ta.spread_points.clear();
-      }
-      if (ta.rest_points.size() == tb.rest_points.size()) {
-        for (std::size_t j = 0; j < ta.rest_points.size(); ++j) {
-          ta.rest_points[j] = (wa * ta.rest_points[j] + wb * tb.rest_points[j]) / w;
-        }
-        ta.rest_points_within = (wa * ta.rest_points_within + wb * tb.rest_points_within) / w;
-      } else {
-        ta.rest_points.clear();
-      }
+        for (std::size_t j = 0; j < pa.size(); ++j) pa[j] = (wa * pa[j] + wb * pb[j]) / w;
+      };
+      blend_points(ta.spread_points, tb.spread_points);
+      blend_points(ta.rest_points, tb.rest_points);
+      ta.rest_points_within = (wa * ta.rest_points_within + wb * tb.rest_points_within) / w;
     }
     for (std::size_t m = 0; m < a.delivery.size(); ++m) {
       if (a.delivery[m] && b.delivery[m]) a.delivery[m] = blend(*a.delivery[m], wa, *b.delivery[m], wb, k());

@@ -390,8 +390,9 @@ void settle_phases(std::vector<FinishedPath>& done, std::size_t directions, std:
     }
     // The odometry's own jitter moves the crossing too, independently.
     sd = std::hypot(sd, p->crossing_sd);
-    offsets[j] = crossing(*p) + expected_check_gap(crossing(*p), sd) - static_cast<double>(p->walker.cycles);
-    p->phase_var = check_gap_variance(crossing(*p), sd);
+    const CheckGap gap = check_gap(crossing(*p), sd);
+    offsets[j] = crossing(*p) + gap.mean - static_cast<double>(p->walker.cycles);
+    p->phase_var = gap.var;
   }
   for (std::size_t j = 0; j < n; ++j) {
     FinishedPath* p = by_direction[j];
@@ -767,10 +768,12 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
       // paths when one draw spans the approach: where the circle is crossed);
       // but the speed and heading at the crossing are a redrawn NOISE's, not
       // the first draw's held to the end: when NOISE is redrawn in the leg,
-      // the spread is the segment quadrature's. Measured on
-      // tests/data/accuracy/noise_at_goal (held 40 cycles, once or twice
-      // redrawn; 1,000 runs): the held paths' spread gave a radius curve 0.33
-      // off, the segment quadrature's ...
+      // the spread is the segment quadrature's. Measured against 1,000 runs
+      // of tests/data/accuracy_open/noise_at_goal/variants/redrawn40.yaml
+      // (held 40 cycles, once or twice redrawn): the held paths' spread gave
+      // a radius curve 0.33 off, the segment quadrature's 0.12; on the fresh
+      // sweep's gen_5126 (600 runs) it goes the other way, 0.087 against
+      // 0.259, but the sweep as a whole favours it (docs/crosscheck.md).
       const bool redrawn_shape = ends != &quad && quad.redraws > 0 && !quad.finished.empty();
       const RestPoints shape = redrawn_shape ? rest_points(quad.finished, false, goal, directions, kin) : at_ends;
       const Eigen::Vector2d centre = at_ends.centre - (mean_xy + run_out(a.end, kin));

@@ -7,31 +7,15 @@
 
 namespace p3at::verifier::engine {
 
-double expected_check_gap(double t, double sd) {
+CheckGap check_gap(double t, double sd) {
   if (!(sd > 1e-9)) {
     const double gap = std::ceil(t) - t;
-    return gap > 0.0 ? gap : 1.0;  // exactly on a check: it fires there... one check later for a crossing just after
+    // Exactly on a check: it fires there... one check later for a crossing just after.
+    return {gap > 0.0 ? gap : 1.0, 0.0};
   }
-  if (sd > 3.0) return 0.5;  // the fraction is uniform to far below 1e-6
-  // Sum over the cells (k - 1, k]: P(cell) * (k - E[X | cell]).
-  const double lo = std::floor(t - 8.0 * sd), hi = std::ceil(t + 8.0 * sd);
-  double total = 0.0, mass = 0.0;
-  for (double k = lo + 1.0; k <= hi; k += 1.0) {
-    const double a = (k - 1.0 - t) / sd, b = (k - t) / sd;
-    const double p = normal_cdf(b) - normal_cdf(a);
-    if (!(p > 1e-15)) continue;
-    const double mean = t + sd * (normal_pdf(a) - normal_pdf(b)) / p;
-    total += p * (k - mean);
-    mass += p;
-  }
-  return mass > 0.0 ? total / mass : 0.5;
-}
-
-double check_gap_variance(double t, double sd) {
-  if (!(sd > 1e-9)) return 0.0;
-  if (sd > 3.0) return 1.0 / 12.0;
-  // Per cell (k - 1, k], X is a truncated normal: E[(k - X)^2 | cell] is
-  // (k - E[X | cell])^2 + Var[X | cell].
+  if (sd > 3.0) return {0.5, 1.0 / 12.0};  // the fraction is uniform to far below 1e-6
+  // Per cell (k - 1, k], X is a truncated normal: P(cell), E[k - X | cell]
+  // and E[(k - X)^2 | cell] = (k - E[X | cell])^2 + Var[X | cell].
   const double lo = std::floor(t - 8.0 * sd), hi = std::ceil(t + 8.0 * sd);
   double first = 0.0, second = 0.0, mass = 0.0;
   for (double k = lo + 1.0; k <= hi; k += 1.0) {
@@ -45,9 +29,13 @@ double check_gap_variance(double t, double sd) {
     second += p * ((k - mean) * (k - mean) + var);
     mass += p;
   }
-  if (!(mass > 0.0)) return 1.0 / 12.0;
+  if (!(mass > 0.0)) return {};
   const double m = first / mass;
-  return std::max(second / mass - m * m, 0.0);
+  return {m, std::max(second / mass - m * m, 0.0)};
 }
+
+double expected_check_gap(double t, double sd) { return check_gap(t, sd).mean; }
+
+double check_gap_variance(double t, double sd) { return check_gap(t, sd).var; }
 
 }  // namespace p3at::verifier::engine

@@ -13,16 +13,22 @@
 
 namespace p3at::verifier::engine {
 
-/// E[ceil(X) - X] for X ~ N(t, sd^2), in (0, 1]: 1 - frac(t) (1 at an
-/// integer) for sd = 0, tending to 1/2 as sd grows (exact sum over the
-/// integers within 8 sd).
-double expected_check_gap(double t, double sd);
+/// The gap G = ceil(X) - X between a crossing at X ~ N(t, sd^2) and the
+/// check that fires, summed exactly over the cells (k - 1, k] within 8 sd.
+struct CheckGap {
+  /// E[G], in (0, 1]: 1 - frac(t) (1 at an integer) for sd = 0, tending to
+  /// 1/2 as sd grows.
+  double mean = 0.5;
+  /// Var[G]: 0 for sd = 0 (one deterministic check), tending to 1/12 (a
+  /// uniform gap) as sd grows, and up to 1/4 in between when the crossing
+  /// straddles a check (the firing is at one check or the next). Times the
+  /// last cycle's step, it is how far along that step the firing pose spreads.
+  double var = 1.0 / 12.0;
+};
+CheckGap check_gap(double t, double sd);
 
-/// Var[ceil(X) - X] for X ~ N(t, sd^2): 0 for sd = 0 (one deterministic
-/// check), tending to 1/12 (a uniform gap) as sd grows, and up to 1/4 in
-/// between when the crossing straddles a check (the firing is at one check
-/// or the next). Times the last cycle's step, it is how far along that step
-/// the firing pose spreads.
+/// check_gap(t, sd).mean and .var.
+double expected_check_gap(double t, double sd);
 double check_gap_variance(double t, double sd);
 
 }  // namespace p3at::verifier::engine
