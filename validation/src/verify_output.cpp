@@ -26,6 +26,7 @@ std::vector<std::size_t> shown(std::size_t n, std::size_t max) {
 std::string why_blocked(const std::string& why) {
   if (why == "stuck") return "stuck on its path (no quadrature direction reaches the state's trigger)";
   if (why == "waiting") return "waiting for a message nobody will send";
+  if (why == "stuck-waiting") return "stuck on its path, then waiting for a message nobody will send";
   if (why == "loop") return "still looping after the event budget";
   return why;
 }

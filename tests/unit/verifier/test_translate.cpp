@@ -199,6 +199,8 @@ TEST_SUITE("translate: models and generated missions") {
       rm.kinematics.cycle_s = 0.1;
       rm.motion.trans_scale = 0.909;
       rm.motion.trans_var_per_m = 0.25;
+      // robot2's wheels differ: its turns move it forward (the last argument).
+      if (robot.name == "robot2") rm.motion.trans_per_rad_m = 0.0075;
       models.robots.push_back(rm);
     }
     models.environment.walls.push_back({3, 2.5, 24, 2.5});
@@ -209,7 +211,8 @@ TEST_SUITE("translate: models and generated missions") {
     REQUIRE(p.ok());
     const pars::Term& sys = def(*p, "Sys").body;
     CHECK(pars::to_string(sys.parts[1]) ==
-          "Robot<robot1, (5.5, 5, 0), (5.5, 5, 0), 0.1, Motion(0.909, 1, 0, 0.25, 0, 0)>(v_robot1)(p_robot1, od_robot1)");
+          "Robot<robot1, (5.5, 5, 0), (5.5, 5, 0), 0.1, Motion(0.909, 1, 0, 0.25, 0, 0, 0)>(v_robot1)(p_robot1, od_robot1)");
+    CHECK(pars::to_string(sys.parts[2]).find("Motion(0.909, 1, 0, 0.25, 0, 0, 0.0075)") != std::string::npos);
     CHECK(pars::to_string(sys.parts[3].params[0]) == "((3, 2.5, 24, 2.5),)");
     CHECK(sys.parts[3].params[1] == pars::number(4.5));
     CHECK(pars::to_string(sys.parts[4].params[0]) == "MoG((0.9, 0.007, 1e-05), (0.1, 0.16, 0.008))");

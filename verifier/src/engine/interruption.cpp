@@ -70,6 +70,22 @@ std::vector<Eigen::Vector2d> equal_weight_offsets(const std::vector<Eigen::Vecto
 
 }  // namespace
 
+std::shared_ptr<const LegTrajectory> trajectory_subset(const LegTrajectory& leg, bool stuck) {
+  auto out = std::make_shared<LegTrajectory>();
+  out->cycle_s = leg.cycle_s;
+  double total = 0.0;
+  for (std::size_t j = 0; j < leg.paths.size(); ++j) {
+    if (leg.is_stuck(j) != stuck || leg.paths[j].empty()) continue;
+    out->paths.push_back(leg.paths[j]);
+    out->weights.push_back(leg.weight(j));
+    out->stuck.push_back(stuck ? 1 : 0);
+    total += leg.weight(j);
+  }
+  if (out->paths.empty() || total <= 0.0) return nullptr;
+  for (double& w : out->weights) w /= total;
+  return out;
+}
+
 TrajectoryPoint pose_at(const LegTrajectory& leg, std::size_t path, double t_s) {
   const std::vector<TrajectoryPoint>& p = leg.paths.at(path);
   if (p.empty()) return {};

@@ -10,6 +10,7 @@
 /// the motion within the bin added as a spread.
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -44,6 +45,11 @@ struct InterruptionBin {
 /// The pose of path j after `t_s` seconds in the state (interpolated between
 /// cycles; held at the path's last recorded cycle beyond it).
 TrajectoryPoint pose_at(const LegTrajectory& leg, std::size_t path, double t_s);
+
+/// The paths of `leg` that got stuck (`stuck == true`) or that did not, their
+/// weights renormalised: where a robot is, given which of the two it is on.
+/// Null when no path of that kind was recorded.
+std::shared_ptr<const LegTrajectory> trajectory_subset(const LegTrajectory& leg, bool stuck);
 
 /// Splits τ (seconds since the state's entry) into at most `max_bins` bins of
 /// equal probability (one when the robot hardly moves over τ's spread) and

@@ -16,6 +16,52 @@ constexpr double kPi = 3.14159265358979323846;
 // that over many redraws the directions used do not sit on one lattice.
 constexpr double kGoldenAngleRad = 2.399963229728653;
 
+// A path that has neither moved nor turned over a whole window, and on which
+// no path has finished meanwhile, is stuck (pinned by a wall's avoidance
+// field, or held off its goal by NOISE where the two balance): stepping it on
+// to the state's cycle cap (ten times the leg's nominal length) changes
+// nothing but the cost. gen_5062's patrol and last leg took 0.8 million
+// cycles per analysis, most of them on pinned paths, and the mission ran out
+// of its work budget. The window is twice the simulator's "not moving for
+// 10 s" diagnosis of a pinned run. Only where nothing around moves (a path
+// held by a driving teammate's body goes on once the teammate has passed),
+// and one path alone only when its draw of NOISE lasts to the cap: a redraw
+// moves a path held off its goal (gen_5020: a draw held 40 s keeps robot1
+// 0.18 m from its goal, outside AtGoal's 0.1 m, and the next draw's swing
+// takes it in; checked within the draw, 0.10 blocked became 0.62). Under
+// redraws the check is on the cloud between draws, and no path may have
+// finished over the window: a cloud that keeps its shape while paths leave
+// it through the circle is not stuck.
+constexpr std::size_t kStillWindowCycles = 200;
+constexpr double kStillM = 0.01;
+constexpr double kStillRad = 0.5 * kPi / 180.0;
+// Live mass below this (of the state's 1) is counted stuck at once; the
+// sequencer treats less than 1e-9 of a branch as nothing anyway.
+constexpr double kNegligibleLiveMass = 1e-10;
+
+/// Where a path (or the cloud of live walkers) was at the last look.
+struct StillCheck {
+  std::size_t next = kStillWindowCycles;
+  double x = 0.0, y = 0.0, theta = 0.0, finished = 0.0;
+  bool armed = false;
+  /// A Spin's progress is its turn; a leg's is its position (a robot pinned
+  /// by a wall may keep turning on the spot: the simulator's "not moving").
+  bool spin = false;
+  /// True when nothing moved or finished since the last look `kStillWindowCycles` ago.
+  bool still(std::size_t cycles, double px, double py, double ptheta, double finished_mass) {
+    if (cycles < next) return false;
+    const bool same = armed && std::hypot(px - x, py - y) < kStillM &&
+                      (!spin || std::abs(ptheta - theta) < kStillRad) && finished_mass - finished < 1e-12;
+    next = cycles + kStillWindowCycles;
+    x = px;
+    y = py;
+    theta = ptheta;
+    finished = finished_mass;
+    armed = true;
+    return same;
+  }
+};
+
 // The clustering's metric: metres, with a heading difference of 1 rad
 // counted as 0.3 m, a speed difference of 1 m/s as 2 m and a turn rate of
 // 1 rad/s as 0.3 m (what each does to where the path goes next, roughly).
@@ -218,6 +264,7 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
   if (record != nullptr) {
     record->paths.assign(first_paths, {});
     record->weights.assign(first_paths, 0.0);
+    record->stuck.assign(first_paths, 0);
   }
   const std::size_t every = stepper.sample_every();
   // The mean path: sums of weight × position per sample index.
@@ -242,6 +289,12 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
     for (const Walker& w : live) total += w.weight;
     for (Walker& w : live) w.weight = total > 0.0 ? w.weight / total : 1.0 / static_cast<double>(live.size());
   }
+  const bool spin = stepper.go() == nullptr;
+  const bool checks_still = stepper.static_surroundings();
+  const bool one_draw = length > cap;  // no redraw before the cap: a path alone can be checked
+  StillCheck cloud;
+  cloud.spin = spin;
+  double finished_mass = 0.0;  // of out.finished, kept as they finish
   for (std::size_t segment = 0; !live.empty(); ++segment) {
     if (segment > 0) ++out.redraws;
     const std::size_t until = std::min(cap, (segment + 1) * length);
@@ -276,6 +329,9 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
     }
     for (const Job& job : jobs) {
       Walker w = live[job.parent];
+      StillCheck own;  // this path alone, within a draw that lasts over the window
+      own.next = w.cycles + kStillWindowCycles;
+      own.spin = spin;
       w.weight = job.weight;
       // Recorded until the robot has come to rest for good (a leg waiting
       // at its goal for a message): beyond the record the pose is held.
@@ -295,9 +351,11 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
           done.phase_cycles = stepper.settle_phase(done.walker, *exit, &done.crossing_c, &done.step, &done.crossing_sd);
           if (done.crossing_c >= 0.0) done.phase_var = 1.0 / 12.0;
           out.finished.push_back(done);
+          finished_mass += done.walker.weight;
           break;
         }
-        if (w.cycles >= cap) {
+        if (w.cycles >= cap || (checks_still && one_draw && own.still(w.cycles, w.q.x_m, w.q.y_m, w.q.theta_rad, finished_mass))) {
+          if (record != nullptr && segment == 0) record->stuck[job.slot] = 1;
           out.stuck += w.weight;
           out.stuck_x_m += w.weight * w.q.x_m;
           out.stuck_y_m += w.weight * w.q.y_m;
@@ -318,6 +376,28 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
     // distribution is shaped by the flow and needs more.
     const bool near = std::any_of(children.begin(), children.end(), [&](const Walker& w) { return stepper.delicate(w); });
     live = reduce_walkers(children, near ? keep_near : keep);
+    // Redrawn: the walkers are merged at every draw, so the test is on the
+    // cloud (its weighted mean pose) rather than on one path.
+    if (!live.empty()) {
+      double wx = 0.0, wy = 0.0, wt = 0.0, wsum = 0.0;
+      for (const Walker& w : live) {
+        wx += w.weight * w.q.x_m;
+        wy += w.weight * w.q.y_m;
+        wt += w.weight * w.q.theta_rad;
+        wsum += w.weight;
+      }
+      // What is left may be a vanishing remainder (1e-12 of the mass, down to
+      // 1e-236 on gen_5062, orbiting the goal): not worth a cycle more.
+      if (wsum < kNegligibleLiveMass ||
+          (checks_still && cloud.still(live.front().cycles, wx / wsum, wy / wsum, wt / wsum, finished_mass))) {
+        for (const Walker& w : live) {
+          out.stuck += w.weight;
+          out.stuck_x_m += w.weight * w.q.x_m;
+          out.stuck_y_m += w.weight * w.q.y_m;
+        }
+        live.clear();
+      }
+    }
   }
 
   // Finished paths stay where they ended for the rest of the mean path.

@@ -159,4 +159,6 @@ void PathStepper::step(Walker& w, double noise_angle_rad) const {
   ++w.cycles;
 }
 
+bool PathStepper::static_surroundings() const { return !ctx_.movers || ctx_.movers->empty(); }
+
 }  // namespace p3at::verifier::engine

@@ -68,6 +68,9 @@ class PathStepper {
   bool delicate(const Walker& w) const;
 
   const mission::GoToGuardedParams* go() const { return go_; }
+  /// True when nothing around the robot moves during the state (no driving
+  /// teammate comes near): a path standing still then stays still.
+  bool static_surroundings() const;
   /// Cycles between mean-path samples (one second).
   std::size_t sample_every() const { return sample_every_; }
 

@@ -164,6 +164,10 @@ struct Pending {
 
 struct Track {
   std::size_t state = 0;
+  /// Stuck on its path in a state that listens for a message: standing at
+  /// (stuck_x_m, stuck_y_m) (odometric, the stuck paths' mean) until it comes.
+  bool stuck_waiting = false;
+  double stuck_x_m = 0.0, stuck_y_m = 0.0;
   BaseState base;                 ///< odometry at the current state's start
   ErrorState error;
   /// The error's spread between NOISE paths kept apart (engine/error_mixture.hpp;
@@ -353,6 +357,7 @@ class Sequencer {
     Track& track = b.robots[i];
     track.state = state;
     track.pending.clear();
+    track.stuck_waiting = false;
     // A loop (a back-edge in the FSA) is the paper's tail recursion unrolled
     // one lap per entry; laps beyond the budget are cut off, their mass
     // reported and counted as failure.
@@ -447,12 +452,35 @@ class Sequencer {
       }
     }
     const StateAnalysis& a = track.analysis;
-    if (a.blocked > kNegligible) {
+    note_concurrent_legs(b, i, state);
+    // A motion state that listens for a message (it has a trajectory) is not
+    // over for a path that gets stuck on the way (pinned by a wall's
+    // avoidance, held off its goal by NOISE): the robot stands where that
+    // path stopped until the message takes it on, as a robot in a Stop
+    // waits. If no message ever comes, the branch ends blocked like any
+    // wait nobody answers. gen_5062's patrol (robot2 alone pinned in 99 % of
+    // the runs, the team's relief reaching it first in all of them) was
+    // counted blocked with P 0.998 where every run succeeds.
+    if (a.trajectory) {
+      const bool no_exits = a.exits.empty();
+      const double stuck_mass = no_exits ? 1.0 : a.blocked;
+      if (stuck_mass > kNegligible) {
+        BranchState waiting = no_exits ? std::move(b) : b;
+        waiting.weight *= stuck_mass;
+        Track& w = waiting.robots[i];
+        if (w.analysis.stuck_trajectory) w.analysis.trajectory = w.analysis.stuck_trajectory;
+        w.analysis.exits.clear();
+        w.stuck_waiting = true;
+        w.stuck_x_m = w.analysis.blocked_x_m;
+        w.stuck_y_m = w.analysis.blocked_y_m;
+        out.push_back(std::move(waiting));
+      }
+      if (no_exits) return;
+    } else if (a.blocked > kNegligible) {
       outcome_.blocked_mass += b.weight * a.blocked;
       note_blocked(i, state, a.blocked_x_m + track.error.mean(0), a.blocked_y_m + track.error.mean(1), "stuck",
                    b.weight * a.blocked);
     }
-    note_concurrent_legs(b, i, state);
     if (a.exits.empty()) {
       if (a.blocked < 1.0 - kNegligible) {
         b.weight *= (1.0 - a.blocked);
@@ -1212,6 +1240,11 @@ class Sequencer {
     for (std::size_t i = 0; i < b.robots.size(); ++i) {
       const Track& t = b.robots[i];
       if (t.final) continue;
+      if (t.stuck_waiting && why == "waiting") {
+        note_blocked(i, t.state, t.stuck_x_m + t.error.mean(0), t.stuck_y_m + t.error.mean(1), "stuck-waiting",
+                     b.weight);
+        continue;
+      }
       const Eigen::Vector2d p = t.true_mean();
       note_blocked(i, t.state, p.x(), p.y(), why, b.weight);
     }

@@ -13,6 +13,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
+#include "engine/interruption.hpp"
 #include "engine/noise_segments.hpp"
 #include "engine/trigger_phase.hpp"
 
@@ -654,7 +655,16 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
     a.cycles_simulated += held.cycles_simulated;
     if (draw_spans_approach && held.stuck <= 0.0) ends = &held;
   }
-  a.trajectory = trajectory;
+  // The sequencer sends the paths that got through on with the exits and
+  // the stuck ones to wait for the message (engine/interruption.hpp,
+  // trajectory_subset): split once here, where the analysis is cached.
+  if (trajectory) {
+    const auto& stuck = trajectory->stuck;
+    const bool any_stuck = std::any_of(stuck.begin(), stuck.end(), [](char c) { return c != 0; });
+    const bool all_stuck = any_stuck && std::all_of(stuck.begin(), stuck.end(), [](char c) { return c != 0; });
+    a.trajectory = any_stuck && !all_stuck ? trajectory_subset(*trajectory, /*stuck=*/false) : trajectory;
+    if (any_stuck) a.stuck_trajectory = all_stuck ? trajectory : trajectory_subset(*trajectory, /*stuck=*/true);
+  }
   if (ends->redraws == 0) {
     for (std::size_t s = 0; s < entries.size(); ++s) settle_phases(ends->finished, directions, s);
   }

@@ -96,6 +96,10 @@ struct StateAnalysis {
   /// Pose versus time per NOISE path, for a motion state a message can
   /// interrupt (one with a Notified exit); null otherwise (engine/interruption).
   std::shared_ptr<const LegTrajectory> trajectory;
+  /// The same for the paths that got stuck (pinned, or held off the goal):
+  /// where a robot on one of them waits for the message; null when none did.
+  /// `trajectory` then holds only the paths that got through.
+  std::shared_ptr<const LegTrajectory> stuck_trajectory;
 };
 
 class MovingBodies;  // engine/moving_bodies.hpp

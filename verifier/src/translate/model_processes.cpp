@@ -38,7 +38,7 @@ Term robot_instance(const m::RobotSpec& robot, const RobotModel* model) {
     const MotionError& z = model->motion;
     motion = pars::call("Motion", {pars::number(z.trans_scale), pars::number(z.rot_scale), pars::number(z.drift_rad_per_m),
                                    pars::number(z.trans_var_per_m), pars::number(z.rot_var_per_rad),
-                                   pars::number(z.heading_var_per_m)});
+                                   pars::number(z.heading_var_per_m), pars::number(z.trans_per_rad_m)});
   }
   // The odometry starts where the robot truly is: both poses from `start`.
   return pars::process("Robot", {pars::name(robot.name), pose_of(robot.start), pose_of(robot.start), period, motion},
@@ -168,7 +168,7 @@ std::string system_comment(const m::Mission& mission, const Models* models) {
     return c;
   }
   c += "\nModels from " + models->source + ": Motion(trans_scale, rot_scale, drift_rad_per_m, trans_var_per_m,\n"
-       "rot_var_per_rad, heading_var_per_m); MoG((weight, mean s, variance s^2), ...); walls (x0, y0, x1, y1).";
+       "rot_var_per_rad, heading_var_per_m, trans_per_rad_m); MoG((weight, mean s, variance s^2), ...); walls (x0, y0, x1, y1).";
   for (const m::RobotSpec& r : mission.robots) {
     for (const RobotModel& model : models->robots) {
       if (model.name != r.name) continue;

@@ -75,7 +75,8 @@ struct Branch {
 ///
 /// A robot that cannot finish in some branch: which one, in which state,
 /// where (mean true position), and why ("stuck" on its path, "waiting" for a
-/// message nobody will send, "loop" past Budget::max_events).
+/// message nobody will send, "stuck-waiting": stuck on its path in a state a
+/// message would have taken it out of, "loop" past Budget::max_events).
 struct BlockedRecord {
   std::size_t robot = 0;
   std::size_t state = 0;

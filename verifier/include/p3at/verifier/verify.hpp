@@ -67,7 +67,7 @@ struct BlockedRobot {
   std::size_t state = 0;
   std::string state_name;
   double x_m = 0.0, y_m = 0.0;   ///< mean true position where it stops
-  std::string why;               ///< "stuck" (on its path), "waiting" (for a message nobody sends), "loop"
+  std::string why;               ///< "stuck" (on its path), "waiting" (for a message nobody sends), "stuck-waiting" (both), "loop"
   double probability = 0.0;
   std::string where;             ///< "file:line:column" of the state (locate_in_mission_file), else empty
 };
