@@ -28,8 +28,8 @@ struct LegTrajectory {
   std::vector<std::vector<TrajectoryPoint>> paths;
   /// paths[j]'s probability (they sum to 1; equal when empty).
   std::vector<double> weights;
-  /// stuck[j]: path j was still moving at the state's cycle cap (no
-  /// self-timed exit ever fired on it); empty when none was.
+  /// stuck[j]: no self-timed exit ever fired on path j (it reached the
+  /// state's cycle cap, or stood still for good: noise_segments.cpp).
   std::vector<char> stuck;
   bool is_stuck(std::size_t j) const { return j < stuck.size() && stuck[j] != 0; }
   double weight(std::size_t j) const {

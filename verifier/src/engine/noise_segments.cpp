@@ -16,8 +16,8 @@ constexpr double kPi = 3.14159265358979323846;
 // that over many redraws the directions used do not sit on one lattice.
 constexpr double kGoldenAngleRad = 2.399963229728653;
 
-// A path that has neither moved nor turned over a whole window, and on which
-// no path has finished meanwhile, is stuck (pinned by a wall's avoidance
+// A path that has not moved over a whole window (a Spin: not turned either),
+// and on which no path has finished meanwhile, is stuck (pinned by a wall's avoidance
 // field, or held off its goal by NOISE where the two balance): stepping it on
 // to the state's cycle cap (ten times the leg's nominal length) changes
 // nothing but the cost. gen_5062's patrol and last leg took 0.8 million
@@ -295,6 +295,11 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
   StillCheck cloud;
   cloud.spin = spin;
   double finished_mass = 0.0;  // of out.finished, kept as they finish
+  const auto count_stuck = [&out](const Walker& w) {
+    out.stuck += w.weight;
+    out.stuck_x_m += w.weight * w.q.x_m;
+    out.stuck_y_m += w.weight * w.q.y_m;
+  };
   for (std::size_t segment = 0; !live.empty(); ++segment) {
     if (segment > 0) ++out.redraws;
     const std::size_t until = std::min(cap, (segment + 1) * length);
@@ -356,9 +361,7 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
         }
         if (w.cycles >= cap || (checks_still && one_draw && own.still(w.cycles, w.q.x_m, w.q.y_m, w.q.theta_rad, finished_mass))) {
           if (record != nullptr && segment == 0) record->stuck[job.slot] = 1;
-          out.stuck += w.weight;
-          out.stuck_x_m += w.weight * w.q.x_m;
-          out.stuck_y_m += w.weight * w.q.y_m;
+          count_stuck(w);
           break;
         }
         if (w.cycles >= until) {
@@ -390,11 +393,7 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
       // 1e-236 on gen_5062, orbiting the goal): not worth a cycle more.
       if (wsum < kNegligibleLiveMass ||
           (checks_still && cloud.still(live.front().cycles, wx / wsum, wy / wsum, wt / wsum, finished_mass))) {
-        for (const Walker& w : live) {
-          out.stuck += w.weight;
-          out.stuck_x_m += w.weight * w.q.x_m;
-          out.stuck_y_m += w.weight * w.q.y_m;
-        }
+        for (const Walker& w : live) count_stuck(w);
         live.clear();
       }
     }

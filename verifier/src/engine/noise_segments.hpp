@@ -45,7 +45,7 @@ struct FinishedPath {
 
 struct NoiseQuadrature {
   std::vector<FinishedPath> finished;
-  double stuck = 0.0;              ///< mass still moving at the cycle cap
+  double stuck = 0.0;              ///< mass that never fired an exit: at the cycle cap, standing still (noise_segments.cpp), or a vanishing remainder
   double stuck_x_m = 0.0;          ///< mass-weighted sum of where the stuck walkers were (divide by stuck)
   double stuck_y_m = 0.0;
   std::size_t redraws = 0;         ///< segments after the first that carried mass

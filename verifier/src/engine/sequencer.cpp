@@ -164,10 +164,9 @@ struct Pending {
 
 struct Track {
   std::size_t state = 0;
-  /// Stuck on its path in a state that listens for a message: standing at
-  /// (stuck_x_m, stuck_y_m) (odometric, the stuck paths' mean) until it comes.
+  /// Stuck on its path in a state that listens for a message: standing where
+  /// the stuck paths stopped (analysis.blocked_x_m, _y_m) until it comes.
   bool stuck_waiting = false;
-  double stuck_x_m = 0.0, stuck_y_m = 0.0;
   BaseState base;                 ///< odometry at the current state's start
   ErrorState error;
   /// The error's spread between NOISE paths kept apart (engine/error_mixture.hpp;
@@ -471,8 +470,6 @@ class Sequencer {
         if (w.analysis.stuck_trajectory) w.analysis.trajectory = w.analysis.stuck_trajectory;
         w.analysis.exits.clear();
         w.stuck_waiting = true;
-        w.stuck_x_m = w.analysis.blocked_x_m;
-        w.stuck_y_m = w.analysis.blocked_y_m;
         out.push_back(std::move(waiting));
       }
       if (no_exits) return;
@@ -1241,8 +1238,8 @@ class Sequencer {
       const Track& t = b.robots[i];
       if (t.final) continue;
       if (t.stuck_waiting && why == "waiting") {
-        note_blocked(i, t.state, t.stuck_x_m + t.error.mean(0), t.stuck_y_m + t.error.mean(1), "stuck-waiting",
-                     b.weight);
+        note_blocked(i, t.state, t.analysis.blocked_x_m + t.error.mean(0), t.analysis.blocked_y_m + t.error.mean(1),
+                     "stuck-waiting", b.weight);
         continue;
       }
       const Eigen::Vector2d p = t.true_mean();
