@@ -422,8 +422,12 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
     // stricter decision point (verifier::decision_point(): separable, so one
     // more read of the same evaluation on mapped axes).
     verifier::VerifyOptions decided_grid;
-    for (const double t : tax.values) decided_grid.tmax_grid.push_back(verifier::decision_point(t, 1.0, verified->widened).tmax_s);
-    for (const double rm : rax.values) decided_grid.rmax_grid.push_back(verifier::decision_point(1.0, rm, verified->widened).rmax_m);
+    const bool widened = verified->widened;
+    const verifier::DecisionFloors& floors = verified->floors;
+    for (const double t : tax.values) decided_grid.tmax_grid.push_back(verifier::decision_point(t, 1.0, widened, floors).tmax_s);
+    for (const double rm : rax.values) {
+      decided_grid.rmax_grid.push_back(verifier::decision_point(1.0, rm, widened, floors).rmax_m);
+    }
     Result<verifier::VerifyResult> decided_read = verifier::verify_outcome(mission, models, *outcome, decided_grid);
     if (!decided_read) throw std::runtime_error("verify: " + decided_read.error().message);
     r.score = score_mission(tax.values, rax.values, verified->grid->p_time, budget_read->grid->p_joint.front(), vjoint,

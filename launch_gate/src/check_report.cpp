@@ -39,8 +39,7 @@ std::string format_check(const CheckReport& report) {
   out += line("P(success) = P(both)", format_fixed(r.p_joint, 4) + (r.p_joint >= r.threshold ? "  >= " : "  < ") +
                                           "threshold " + format_fixed(r.threshold, 4));
   out += line("P(success) decided", format_fixed(r.p_joint_decided, 4) + " at " + format_fixed(r.decided_tmax_s, 2) + " s, " +
-                                        format_fixed(r.decided_rmax_m, 3) + " m (" +
-                                        (r.widened ? "the 1 % margin and a curve-shifting approximation" : "the 1 % margin") +
+                                        format_fixed(r.decided_rmax_m, 3) + " m (" + verifier::decision_margin_text(r) +
                                         "; the gate decides on this)");
   for (const verifier::CriterionVerdict& c : r.criteria) {
     out += line("criterion " + c.name, format_fixed(c.probability, 4) + (c.holds ? "  holds" : "  FAILS") + " (needs " +

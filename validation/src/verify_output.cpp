@@ -77,7 +77,11 @@ nlohmann::json verify_json(const mission::Mission& mission, const verifier::Veri
   j["decision"] = verifier::to_string(verifier::decision(r));
   j["evaluable"] = r.evaluable;
   j["p_joint_decided"] = r.p_joint_decided;
-  j["decided_at"] = {{"tmax_s", r.decided_tmax_s}, {"rmax_m", r.decided_rmax_m}, {"widened", r.widened}};
+  j["decided_at"] = {{"tmax_s", r.decided_tmax_s},
+                     {"rmax_m", r.decided_rmax_m},
+                     {"widened", r.widened},
+                     {"floor_time_s", r.floors.time_s},
+                     {"floor_radius_m", r.floors.radius_m}};
   j["tmax_s"] = r.tmax_s;
   j["rmax_m"] = r.rmax_m;
   j["threshold"] = r.threshold;
@@ -145,8 +149,7 @@ std::string verify_text(const mission::Mission& mission, const verifier::VerifyR
   s += "  P(every r_i <= Rmax)         " + format_fixed(r.p_radius, 4) + "\n";
   s += "  P(t <= Tmax and r_i <= Rmax) " + format_fixed(r.p_joint, 4) + "\n";
   s += "  decided at " + format_fixed(r.decided_tmax_s, 2) + " s, " + format_fixed(r.decided_rmax_m, 3) + " m (" +
-       (r.widened ? "the gate's 1 % margin and an approximation that shifts the curves" : "the gate's 1 % margin") +
-       "): P " + format_fixed(r.p_joint_decided, 4) + "\n";
+       verifier::decision_margin_text(r) + "): P " + format_fixed(r.p_joint_decided, 4) + "\n";
   for (std::size_t i = 0; i < r.robots.size(); ++i) {
     const verifier::RobotPrediction& p = r.robots[i];
     if (!p.finishes) {

@@ -353,7 +353,8 @@ Result<VerifyResult> verify_outcome(const mission::Mission& mission, const Model
   const bool widen = std::any_of(r.approximations.begin(), r.approximations.end(), [](const Approximation& a) {
     return approximation_row(a.kind).treatment == Treatment::widen;
   });
-  const DecisionPoint at = decision_point(r.tmax_s, r.rmax_m, widen);
+  r.floors = decision_floors(mission, models);
+  const DecisionPoint at = decision_point(r.tmax_s, r.rmax_m, widen, r.floors);
   r.widened = widen;
   r.decided_tmax_s = at.tmax_s;
   r.decided_rmax_m = at.rmax_m;
@@ -370,9 +371,7 @@ Result<VerifyResult> verify_outcome(const mission::Mission& mission, const Model
   if (r.p_joint >= r.threshold && decided < r.threshold) {
     r.failed.push_back("P(t <= " + fixed(at.tmax_s, 2) + " s and every r_i <= " + fixed(at.rmax_m, 3) + " m) = " +
                        fixed(decided, 3) + " < threshold " + fixed(r.threshold, 3) +
-                       " (decided there, not at Tmax and Rmax: the gate's 1 % margin" +
-                       (widen ? std::string(", and an approximation of this mission that shifts the curves") : std::string()) +
-                       ", docs/verifier.md)");
+                       " (decided there, not at Tmax and Rmax: " + decision_margin_text(r) + ", docs/verifier.md)");
   }
   // Never a GO on numbers the model could not define (counted as failure above).
   if (const double undefined = undefined_completion(o); undefined > 0.0) {
@@ -389,8 +388,26 @@ Result<VerifyResult> verify_outcome(const mission::Mission& mission, const Model
   return r;
 }
 
-DecisionPoint decision_point(double tmax_s, double rmax_m, bool widen) {
-  DecisionPoint d{tmax_s * (1.0 - kDecisionMargin), rmax_m * (1.0 - kDecisionMargin)};
+DecisionFloors decision_floors(const mission::Mission& mission, const Models& models) {
+  DecisionFloors f;
+  for (const mission::RobotSpec& robot : mission.robots) {
+    const RobotModel* model = models.find_robot(robot.name);
+    const double cycle_s = model != nullptr ? model->kinematics.cycle_s : Kinematics{}.cycle_s;
+    f.time_s = std::max(f.time_s, cycle_s);
+    f.radius_m = std::max(f.radius_m, robot.max_speed_mps * cycle_s);
+  }
+  return f;
+}
+
+std::string decision_margin_text(const VerifyResult& r) {
+  return "the gate's margin: 1 % stricter, at least one cycle (" + fixed(r.floors.time_s, 2) + " s) and one step (" +
+         fixed(r.floors.radius_m, 3) + " m)" +
+         (r.widened ? std::string(", and an approximation that shifts the curves") : std::string());
+}
+
+DecisionPoint decision_point(double tmax_s, double rmax_m, bool widen, const DecisionFloors& floors) {
+  DecisionPoint d{std::min(tmax_s * (1.0 - kDecisionMargin), tmax_s - floors.time_s),
+                  std::max(0.0, std::min(rmax_m * (1.0 - kDecisionMargin), rmax_m - floors.radius_m))};
   if (widen) {
     d.tmax_s = std::min(d.tmax_s, tmax_s - kWidenTime_s);
     d.rmax_m = std::min(d.rmax_m, std::max(0.0, rmax_m - kWidenRadius_m));

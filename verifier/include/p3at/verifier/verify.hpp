@@ -72,6 +72,21 @@ struct BlockedRobot {
   std::string where;             ///< "file:line:column" of the state (locate_in_mission_file), else empty
 };
 
+/// The least the margin may be, whatever 1 % of the criterion is: the
+/// model's granularity. Time: one control cycle (durations are whole cycles,
+/// and a real run may fire one check later). Radius: the longest step a robot
+/// of the mission can make in one cycle (max_speed_mps x cycle_s). Why: the
+/// simulator's (and a P3-AT's) odometric error is in what the encoders
+/// report, not in where the wheels take the robot, so a run fires its AtGoal
+/// at the first check whose *believed* distance is inside the circle, and its
+/// true end point is on the lattice of one cycle's steps along its path: a
+/// staircase in the distance, within one step of the model's smooth curve
+/// (docs/verifier.md, "The decision"). One step stricter reads the model's
+/// curve where the staircase cannot be below it.
+struct DecisionFloors {
+  double time_s = 0.0, radius_m = 0.0;
+};
+
 struct VerifyResult {
   double tmax_s = 0.0, rmax_m = 0.0, threshold = 0.0;
   double p_time = 0.0;      ///< P(t <= tmax)
@@ -102,6 +117,7 @@ struct VerifyResult {
   double p_joint_decided = 0.0;
   double decided_tmax_s = 0.0, decided_rmax_m = 0.0;
   bool widened = false;  ///< an approximation of Treatment::widen made the point stricter still
+  DecisionFloors floors;  ///< the least margins the decision took (decision_floors())
 };
 
 /// The gate's margin: GO is decided at Tmax (1 - h) and Rmax (1 - h), h = 1 %,
@@ -116,9 +132,15 @@ inline constexpr double kDecisionMargin = 0.01;
 struct DecisionPoint {
   double tmax_s = 0.0, rmax_m = 0.0;
 };
-/// Where the gate decides: 1 % stricter in both, and for an approximation
-/// answered by widening also at least kWidenTime_s / kWidenRadius_m stricter.
-DecisionPoint decision_point(double tmax_s, double rmax_m, bool widen);
+/// The floors of a mission: its models' cycle, its fastest robot's step.
+DecisionFloors decision_floors(const mission::Mission& mission, const Models& models);
+/// Where the gate decides: 1 % stricter in both but at least the floors
+/// stricter, and for an approximation answered by widening also at least
+/// kWidenTime_s / kWidenRadius_m stricter.
+DecisionPoint decision_point(double tmax_s, double rmax_m, bool widen, const DecisionFloors& floors = {});
+/// What the decision point's margin was, for the reports: "1 % stricter, at
+/// least one cycle (0.10 s) and one step (0.030 m)" and the widening if any.
+std::string decision_margin_text(const VerifyResult& r);
 
 enum class Decision { go, no_go, cannot_evaluate };
 /// NO-GO whenever the probabilities say so (a mission predicted to fail is
