@@ -18,7 +18,10 @@
 /// it waits there for a message or has finished, for their expected length
 /// when they lead on by themselves to another leg (a Notify's acknowledgement,
 /// a Spin's turn), and drops out then, as at once when its next state is a
-/// leg (a leg is analysed only when the robot gets there).
+/// leg (a leg is analysed only when the robot gets there). A teammate that
+/// holds still when robot i enters its state but drives off by its own
+/// triggers stands at its mean true pose until then, and on from there as
+/// above along the leg it drives off on (sequencer's still_then_off).
 ///
 /// It is one-way: j's path was predicted without i (i does not push j aside
 /// or slow it down), and it is j's MEAN path, a single body, not the spread

@@ -549,14 +549,17 @@ class Sequencer {
       if (j == i) continue;
       // A teammate driving a GoToGuarded leg is not where its leg began for
       // long: pinning its body there would block a robot headed for the spot
-      // it just left (a hand-over at a waypoint) for the whole state. Only
-      // teammates that hold still (Stop, Notify, Spin, finished) are fixed
-      // obstacles; driving ones move along their predicted paths
-      // (moving_teammates).
+      // it just left (a hand-over at a waypoint) for the whole state, nor is
+      // one that holds still only until it drives off by itself (a Notify's
+      // acknowledgement, a Spin's turn). Only teammates that hold still for
+      // good as far as their own timing goes (finished, or waiting for a
+      // message) are fixed obstacles; the others are bodies that move with
+      // time (moving_teammates).
       if (!b.robots[j].final &&
           std::holds_alternative<mission::GoToGuardedParams>(mission_.robots[j].states[b.robots[j].state].behavior)) {
         continue;
       }
+      if (drives_off_in(b, j)) continue;
       const Eigen::Vector2d p = b.robots[j].true_mean();
       const auto body = body_segments(p.x(), p.y(), b.robots[j].base.theta_rad + b.robots[j].error.mean(2));
       all.insert(all.end(), body.begin(), body.end());
@@ -582,7 +585,13 @@ class Sequencer {
     for (std::size_t j = 0; j < b.robots.size(); ++j) {
       const Track& tj = b.robots[j];
       const mission::RobotSpec& spec = mission_.robots[j];
-      if (j == i || tj.final || !std::holds_alternative<mission::GoToGuardedParams>(spec.states[tj.state].behavior)) {
+      if (j == i || tj.final) continue;
+      if (!std::holds_alternative<mission::GoToGuardedParams>(spec.states[tj.state].behavior)) {
+        // Holding still now: a fixed obstacle (obstacles_near) unless it
+        // drives off by its own triggers, then a body standing here until then.
+        if (std::optional<MovingBody> body = still_then_off(b, j, i)) {
+          if (passes_near(*body, from.x(), from.y(), go->goal.x_m, go->goal.y_m, reach)) bodies->add(std::move(*body));
+        }
         continue;
       }
       // Not entered yet (robots enter their first state in file order at
@@ -608,37 +617,12 @@ class Sequencer {
         leg.still_for_s = after.seconds;
         break;
       }
-      std::shared_ptr<const StateAnalysis> next;
       if (std::isfinite(leg.ends_in_s) && after.leg) {
         BaseState start = tj.analysis.end;
         start.theta_rad += after.turn_rad;
         start.trans_mps = start.rot_radps = 0.0;  // the still states in between brake
-        next = look_ahead(j, *after.leg, start, tj.analysis.error);
-        if (next && !next->path.empty()) {
-          TeammateLeg ahead;
-          ahead.path = &next->path;
-          ahead.start = start;
-          ahead.end = next->end;
-          ahead.error_start = tj.analysis.error.mean;
-          ahead.error_end = next->error.mean;
-          ahead.entered_s = leg.ends_in_s + leg.still_for_s;
-          double mass = 0.0, mean = 0.0, best = 0.0;
-          std::size_t to = 0;
-          for (const TimedExit& e : next->exits) {
-            mass += e.probability;
-            mean += e.probability * e.duration_s.mean();
-            if (e.probability > best) {
-              best = e.probability;
-              to = spec.transitions[e.transition].to;
-            }
-          }
-          if (mass > 0.0) {
-            ahead.ends_in_s = ahead.entered_s + mean / mass;
-            // Where it holds still after, and for how long; a third leg is
-            // not predicted (it drops out when it would drive on).
-            ahead.still_for_s = still_after(j, to).seconds;
-          }
-          legs.push_back(ahead);
+        if (auto ahead = leg_ahead(j, *after.leg, start, tj.analysis.error, leg.ends_in_s + leg.still_for_s)) {
+          legs.push_back(*ahead);
         }
       }
       MovingBody body = follow_legs(legs, cycle_s(i));
@@ -698,6 +682,87 @@ class Sequencer {
     chain.seconds = std::numeric_limits<double>::infinity();
     chain.leg.reset();
     return chain;
+  }
+
+  /// Robot j's leg `state` predicted ahead from `start` (look_ahead), entered
+  /// `entered_s` after the analysed robot's entry: the leg moving_teammates
+  /// follows, its exit at the mean of its exits' durations and the stillness
+  /// after the likeliest one (a third leg is not predicted: it drops out when
+  /// it would drive on). Nullopt when the prediction has no path.
+  std::optional<TeammateLeg> leg_ahead(std::size_t j, std::size_t state, const BaseState& start, const ErrorState& error,
+                                       double entered_s) {
+    const std::shared_ptr<const StateAnalysis> next = look_ahead(j, state, start, error);
+    if (!next || next->path.empty()) return std::nullopt;
+    const mission::RobotSpec& spec = mission_.robots[j];
+    TeammateLeg ahead;
+    ahead.path = &next->path;  // the analysis lives in look_ahead_cache_
+    ahead.start = start;
+    ahead.end = next->end;
+    ahead.error_start = error.mean;
+    ahead.error_end = next->error.mean;
+    ahead.entered_s = entered_s;
+    double mass = 0.0, mean = 0.0, best = 0.0;
+    std::size_t to = 0;
+    for (const TimedExit& e : next->exits) {
+      mass += e.probability;
+      mean += e.probability * e.duration_s.mean();
+      if (e.probability > best) {
+        best = e.probability;
+        to = spec.transitions[e.transition].to;
+      }
+    }
+    if (mass > 0.0) {
+      ahead.ends_in_s = ahead.entered_s + mean / mass;
+      ahead.still_for_s = still_after(j, to).seconds;
+    }
+    return ahead;
+  }
+
+  /// Robot j holding still now (a Notify, a Spin, a Stop) and driving off by
+  /// its own triggers (still_after from the state it is in: an
+  /// acknowledgement, a turn): how long from now until it drives, and the
+  /// chain. Nullopt when it holds still for good as far as its own timing goes
+  /// (a final state, or one it leaves only on a message), or drives now.
+  std::optional<std::pair<double, StillChain>> drives_off_in(const BranchState& b, std::size_t j) const {
+    const Track& tj = b.robots[j];
+    if (tj.final || std::holds_alternative<mission::GoToGuardedParams>(mission_.robots[j].states[tj.state].behavior)) {
+      return std::nullopt;
+    }
+    StillChain chain = still_after(j, tj.state);
+    if (!std::isfinite(chain.seconds) || !chain.leg) return std::nullopt;
+    const double since_entry = std::max(0.0, b.clock.mean() - tj.entry_clock.mean());
+    return std::make_pair(std::max(0.0, chain.seconds - since_entry), chain);
+  }
+
+  /// Teammate j, holding still now but driving off by itself (drives_off_in),
+  /// as robot i's obstacle: standing at its mean true pose until it drives,
+  /// then its next leg as a driving teammate's (absent while it drives,
+  /// standing where it ends while it holds still after). Before, it stood
+  /// there for the whole of i's state: a robot sent on by a teammate's Notify
+  /// steered around the teammate that had just left (gen_5031's robot3 3.8 s
+  /// late). Nullopt when j does not drive off by itself.
+  std::optional<MovingBody> still_then_off(const BranchState& b, std::size_t j, std::size_t i) {
+    const auto off = drives_off_in(b, j);
+    if (!off) return std::nullopt;
+    const auto& [drives_in_s, chain] = *off;
+    const Track& tj = b.robots[j];
+    BaseState start = tj.base;
+    start.theta_rad += chain.turn_rad;
+    start.trans_mps = start.rot_radps = 0.0;
+    std::vector<TeammateLeg> legs;
+    if (auto ahead = leg_ahead(j, *chain.leg, start, tj.error, drives_in_s)) legs.push_back(*ahead);
+    MovingBody body = follow_legs(legs, cycle_s(i));
+    const Eigen::Vector2d p = tj.true_mean();
+    const BodyPose here{p.x(), p.y(), tj.base.theta_rad + tj.error.mean(2)};
+    const std::size_t standing = static_cast<std::size_t>(std::ceil(drives_in_s / cycle_s(i)));
+    if (body.poses.size() < standing) {
+      // No leg predicted (or one that ends before): stands, then gone.
+      body.poses.assign(standing, here);
+      body.rest_until = body.poses.size();
+    } else {
+      std::fill(body.poses.begin(), body.poses.begin() + static_cast<std::ptrdiff_t>(standing), here);
+    }
+    return body;
   }
 
   /// Robot j's leg `state` predicted ahead from `start`, for the teammates
