@@ -618,10 +618,7 @@ class Sequencer {
         break;
       }
       if (std::isfinite(leg.ends_in_s) && after.leg) {
-        BaseState start = tj.analysis.end;
-        start.theta_rad += after.turn_rad;
-        start.trans_mps = start.rot_radps = 0.0;  // the still states in between brake
-        if (auto ahead = leg_ahead(j, *after.leg, start, tj.analysis.error, leg.ends_in_s + leg.still_for_s)) {
+        if (auto ahead = leg_ahead(j, after, tj.analysis.end, tj.analysis.error, leg.ends_in_s + leg.still_for_s)) {
           legs.push_back(*ahead);
         }
       }
@@ -684,14 +681,19 @@ class Sequencer {
     return chain;
   }
 
-  /// Robot j's leg `state` predicted ahead from `start` (look_ahead), entered
+  /// The leg robot j drives after the still states of `chain` (which must
+  /// lead to one), predicted ahead (look_ahead) from `from`, where those
+  /// states begin, turned by their Spins and braked to rest, and entered
   /// `entered_s` after the analysed robot's entry: the leg moving_teammates
   /// follows, its exit at the mean of its exits' durations and the stillness
   /// after the likeliest one (a third leg is not predicted: it drops out when
   /// it would drive on). Nullopt when the prediction has no path.
-  std::optional<TeammateLeg> leg_ahead(std::size_t j, std::size_t state, const BaseState& start, const ErrorState& error,
-                                       double entered_s) {
-    const std::shared_ptr<const StateAnalysis> next = look_ahead(j, state, start, error);
+  std::optional<TeammateLeg> leg_ahead(std::size_t j, const StillChain& chain, const BaseState& from,
+                                       const ErrorState& error, double entered_s) {
+    BaseState start = from;
+    start.theta_rad += chain.turn_rad;
+    start.trans_mps = start.rot_radps = 0.0;  // the still states in between brake
+    const std::shared_ptr<const StateAnalysis> next = look_ahead(j, *chain.leg, start, error);
     if (!next || next->path.empty()) return std::nullopt;
     const mission::RobotSpec& spec = mission_.robots[j];
     TeammateLeg ahead;
@@ -746,11 +748,8 @@ class Sequencer {
     if (!off) return std::nullopt;
     const auto& [drives_in_s, chain] = *off;
     const Track& tj = b.robots[j];
-    BaseState start = tj.base;
-    start.theta_rad += chain.turn_rad;
-    start.trans_mps = start.rot_radps = 0.0;
     std::vector<TeammateLeg> legs;
-    if (auto ahead = leg_ahead(j, *chain.leg, start, tj.error, drives_in_s)) legs.push_back(*ahead);
+    if (auto ahead = leg_ahead(j, chain, tj.base, tj.error, drives_in_s)) legs.push_back(*ahead);
     MovingBody body = follow_legs(legs, cycle_s(i));
     const Eigen::Vector2d p = tj.true_mean();
     const BodyPose here{p.x(), p.y(), tj.base.theta_rad + tj.error.mean(2)};
