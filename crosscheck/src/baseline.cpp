@@ -116,6 +116,12 @@ std::vector<std::string> check_baseline(const std::vector<MissionResult>& result
       out.push_back(r.name + ": " + std::to_string(r.score.overconfident_go_cells) + " over-confident GO cells > " +
                     std::to_string(it->overconfident_go_cells));
     }
+    // A safety criterion the gate would pass where the runs refute it: none
+    // allowed on a mission the verifier vouches for.
+    if (r.evaluable && r.separation && r.separation->overconfident_points > 0) {
+      out.push_back(r.name + ": " + std::to_string(r.separation->overconfident_points) +
+                    " over-confident separation points > 0");
+    }
   }
   return out;
 }

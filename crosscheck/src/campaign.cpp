@@ -433,6 +433,8 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
     r.score = score_mission(tax.values, rax.values, verified->grid->p_time, budget_read->grid->p_joint.front(), vjoint,
                             curve_points(mid.time, lo.time, hi.time), completed_radius_curve(runs, rax.values, timeout_s),
                             wjoint, &decided_read->grid->p_joint);
+    // The separation criterion's curve, from the same evaluation and runs.
+    if (mission.robots.size() >= 2) r.separation = score_separation(*outcome, runs, o.rmax_points);
 
     // 7. How to redo it: the whole mission, or each step in its folder.
     r.reproduce = o.command_prefix + " " +

@@ -56,7 +56,7 @@ Json stats_json(const MetricStats& s) {
 CampaignSummary summarize(const std::vector<MissionResult>& results, const Bounds& b) {
   CampaignSummary s;
   s.missions = results.size();
-  std::vector<double> ts, tt, rs, rt, js, jt;
+  std::vector<double> ts, tt, rs, rt, js, jt, ss, st;
   for (const MissionResult& r : results) {
     s.runs += r.runs;
     if (!r.error.empty()) {
@@ -70,6 +70,12 @@ CampaignSummary summarize(const std::vector<MissionResult>& results, const Bound
     rt.push_back(r.score.radius.tolerant);
     js.push_back(r.score.joint.strict);
     jt.push_back(r.score.joint.tolerant);
+    if (r.separation) {
+      ss.push_back(r.separation->error.strict);
+      st.push_back(r.separation->error.tolerant);
+      s.separation_overconfident_points += r.separation->overconfident_points;
+      s.separation_overconfident_missions += r.separation->overconfident_points > 0;
+    }
     s.all_within_strict += r.score.within(b, false);
     s.all_within_tolerant += r.score.within(b, true);
     if (!r.evaluable) {
@@ -86,6 +92,8 @@ CampaignSummary summarize(const std::vector<MissionResult>& results, const Bound
   s.radius_tolerant = stats(rt, b.radius);
   s.joint_strict = stats(js, b.joint);
   s.joint_tolerant = stats(jt, b.joint);
+  s.separation_strict = stats(ss, b.radius);
+  s.separation_tolerant = stats(st, b.radius);
   return s;
 }
 
@@ -116,6 +124,14 @@ Json mission_result_json(const MissionResult& r) {
                      {"ci_low", c.ci_low}, {"ci_high", c.ci_high}});
   }
   j["overconfident_worst"] = cells;
+  if (r.separation) {
+    Json sep = error_json(r.separation->error);
+    sep["d_range"] = r.separation->range;
+    sep["overconfident_points"] = r.separation->overconfident_points;
+    j["separation"] = sep;
+  } else {
+    j["separation"] = nullptr;
+  }
   j["within_bounds_strict"] = r.error.empty() && r.score.within(Bounds{}, false);
   j["within_bounds_tolerant"] = r.error.empty() && r.score.within(Bounds{}, true);
   j["seconds"] = {{"calibrate", r.calibrate_s}, {"validate", r.validate_s}, {"verify", r.verify_s}};
@@ -126,20 +142,21 @@ Json mission_result_json(const MissionResult& r) {
 
 namespace {
 
+// A number, or NaN where the writer had one (nlohmann writes a NaN as null).
 double number(const nlohmann::json& j) { return j.is_null() ? std::numeric_limits<double>::quiet_NaN() : j.get<double>(); }
 
 ErrorSummary error_from_json(const nlohmann::json& j) {
   ErrorSummary e;
-  e.strict = j.at("strict").get<double>();
-  e.tolerant = j.at("tolerant").get<double>();
+  e.strict = number(j.at("strict"));
+  e.tolerant = number(j.at("tolerant"));
   e.strict_at_tmax_s = number(j.at("strict_at").at("tmax_s"));
   e.strict_at_rmax_m = number(j.at("strict_at").at("rmax_m"));
-  e.strict_verify = j.at("strict_at").at("verify").get<double>();
-  e.strict_validate = j.at("strict_at").at("validate").get<double>();
+  e.strict_verify = number(j.at("strict_at").at("verify"));
+  e.strict_validate = number(j.at("strict_at").at("validate"));
   e.tolerant_at_tmax_s = number(j.at("tolerant_at").at("tmax_s"));
   e.tolerant_at_rmax_m = number(j.at("tolerant_at").at("rmax_m"));
-  e.tolerant_verify = j.at("tolerant_at").at("verify").get<double>();
-  e.tolerant_validate = j.at("tolerant_at").at("validate").get<double>();
+  e.tolerant_verify = number(j.at("tolerant_at").at("verify"));
+  e.tolerant_validate = number(j.at("tolerant_at").at("validate"));
   e.points = j.at("points").get<std::size_t>();
   return e;
 }
@@ -160,22 +177,29 @@ MissionResult mission_result_from_json(const nlohmann::json& j) {
   r.failed_runs = j.at("failed_runs").get<std::uint64_t>();
   r.tmax_range = j.at("tmax_range").get<std::string>();
   r.rmax_range = j.at("rmax_range").get<std::string>();
-  r.criteria_tmax_s = j.at("criteria").at("tmax_s").get<double>();
-  r.criteria_rmax_m = j.at("criteria").at("rmax_m").get<double>();
-  r.verify_p_joint = j.at("criteria").at("verify_p_joint").get<double>();
-  r.validate_p_joint = j.at("criteria").at("validate_p_joint").get<double>();
+  r.criteria_tmax_s = number(j.at("criteria").at("tmax_s"));
+  r.criteria_rmax_m = number(j.at("criteria").at("rmax_m"));
+  r.verify_p_joint = number(j.at("criteria").at("verify_p_joint"));
+  r.validate_p_joint = number(j.at("criteria").at("validate_p_joint"));
   r.verify_go = j.at("criteria").at("verify_go").get<bool>();
   r.score.time = error_from_json(j.at("time"));
   r.score.radius = error_from_json(j.at("radius"));
   r.score.joint = error_from_json(j.at("joint"));
   r.score.overconfident_go_cells = j.at("overconfident_go_cells").get<std::size_t>();
   for (const nlohmann::json& c : j.at("overconfident_worst")) {
-    r.score.overconfident.push_back({c.at("tmax_s").get<double>(), c.at("rmax_m").get<double>(), c.at("verify").get<double>(),
-                                     c.at("validate").get<double>(), c.at("ci_low").get<double>(), c.at("ci_high").get<double>()});
+    r.score.overconfident.push_back({number(c.at("tmax_s")), number(c.at("rmax_m")), number(c.at("verify")),
+                                     number(c.at("validate")), number(c.at("ci_low")), number(c.at("ci_high"))});
   }
-  r.calibrate_s = j.at("seconds").at("calibrate").get<double>();
-  r.validate_s = j.at("seconds").at("validate").get<double>();
-  r.verify_s = j.at("seconds").at("verify").get<double>();
+  if (j.contains("separation") && !j.at("separation").is_null()) {
+    SeparationScore sep;
+    sep.error = error_from_json(j.at("separation"));
+    sep.range = j.at("separation").at("d_range").get<std::string>();
+    sep.overconfident_points = j.at("separation").at("overconfident_points").get<std::size_t>();
+    r.separation = sep;
+  }
+  r.calibrate_s = number(j.at("seconds").at("calibrate"));
+  r.validate_s = number(j.at("seconds").at("validate"));
+  r.verify_s = number(j.at("seconds").at("verify"));
   r.folder = j.at("folder").get<std::string>();
   r.reproduce = j.at("reproduce").get<std::string>();
   return r;
@@ -197,6 +221,9 @@ Json summary_json(const CampaignSummary& s, const Bounds& b) {
   j["overconfident_go_cells"] = s.overconfident_cells;
   j["overconfident_go_missions"] = s.overconfident_missions;
   j["overconfident_go_cells_not_evaluable"] = s.overconfident_cells_not_evaluable;
+  j["separation"] = {{"strict", stats_json(s.separation_strict)}, {"tolerant", stats_json(s.separation_tolerant)},
+                     {"overconfident_points", s.separation_overconfident_points},
+                     {"overconfident_missions", s.separation_overconfident_missions}};
   return j;
 }
 
@@ -211,7 +238,10 @@ std::string mission_line(const MissionResult& r, const Bounds& b) {
   const auto pair = [](const ErrorSummary& e) { return format_fixed(e.strict, 3) + " / " + format_fixed(e.tolerant, 3); };
   return name + " " + std::to_string(r.robots) + " robot" + (r.robots == 1 ? " " : "s") + "  time " + pair(s.time) +
          "  radius " + pair(s.radius) + "  joint " + pair(s.joint) + "  over-confident GO " +
-         std::to_string(s.overconfident_go_cells) + (r.evaluable ? "" : " (cannot evaluate)") + "  " + verdict;
+         std::to_string(s.overconfident_go_cells) + (r.evaluable ? "" : " (cannot evaluate)") + "  " + verdict +
+         (r.separation ? "  apart " + pair(r.separation->error) +
+                             (r.separation->overconfident_points ? " GO! " + std::to_string(r.separation->overconfident_points) : "")
+                       : "");
 }
 
 std::string summary_text(const CampaignSummary& s, const Bounds& b) {
@@ -240,6 +270,15 @@ std::string summary_text(const CampaignSummary& s, const Bounds& b) {
          std::to_string(s.overconfident_cells) + " on " + std::to_string(s.overconfident_missions) +
          " evaluable missions; " + std::to_string(s.overconfident_cells_not_evaluable) +
          " more on missions verify cannot evaluate\n";
+  if (s.separation_strict.missions > 0) {
+    out += "closest approach: P(no two robots ever within d), on the " + std::to_string(s.separation_strict.missions) +
+           " missions whose runs come within 3 m\n";
+    row("separation curve, strict", s.separation_strict, b.radius);
+    row("separation curve, 1 % shift", s.separation_tolerant, b.radius);
+    out += "over-confident separation points (verify >= 0.8, validation's 95 % interval below 0.78): " +
+           std::to_string(s.separation_overconfident_points) + " on " + std::to_string(s.separation_overconfident_missions) +
+           " missions\n";
+  }
   return out;
 }
 

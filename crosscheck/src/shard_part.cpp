@@ -22,26 +22,6 @@ Error invalid(std::string message) { return make_error(Error::Code::invalid_argu
 // Length-prefixed, so no two different inputs give the same bytes.
 void put(std::string& out, std::string_view part) { out += std::to_string(part.size()) + ":" + std::string(part) + ";"; }
 
-double real(const Json& j) { return j.is_null() ? std::numeric_limits<double>::quiet_NaN() : j.get<double>(); }
-
-ErrorSummary error_from_json(const Json& j) {
-  ErrorSummary e;
-  e.strict = real(j.at("strict"));
-  e.tolerant = real(j.at("tolerant"));
-  const Json& s = j.at("strict_at");
-  e.strict_at_tmax_s = real(s.at("tmax_s"));
-  e.strict_at_rmax_m = real(s.at("rmax_m"));
-  e.strict_verify = real(s.at("verify"));
-  e.strict_validate = real(s.at("validate"));
-  const Json& t = j.at("tolerant_at");
-  e.tolerant_at_tmax_s = real(t.at("tmax_s"));
-  e.tolerant_at_rmax_m = real(t.at("rmax_m"));
-  e.tolerant_verify = real(t.at("verify"));
-  e.tolerant_validate = real(t.at("validate"));
-  e.points = j.at("points").get<std::size_t>();
-  return e;
-}
-
 }  // namespace
 
 std::string campaign_identity(const std::vector<MissionInput>& inputs, const CampaignOptions& o) {
@@ -59,49 +39,6 @@ std::string campaign_identity(const std::vector<MissionInput>& inputs, const Cam
     put(bytes, std::to_string(v));
   }
   return team_sim::part_checksum(bytes);
-}
-
-MissionResult mission_result_from_json(const Json& j) {
-  MissionResult r;
-  r.name = j.at("name").get<std::string>();
-  r.source = j.at("source").get<std::string>();
-  if (!j.at("generator_seed").is_null()) r.generator_seed = j.at("generator_seed").get<std::uint64_t>();
-  r.robots = j.at("robots").get<std::size_t>();
-  if (!j.at("error").is_null()) r.error = j.at("error").get<std::string>();
-  r.evaluable = j.at("evaluable").get<bool>();
-  r.approximations = j.at("approximations").get<std::vector<std::string>>();
-  r.calibration_note = j.at("calibration").get<std::string>();
-  r.runs = j.at("runs").get<std::uint64_t>();
-  r.failed_runs = j.at("failed_runs").get<std::uint64_t>();
-  r.tmax_range = j.at("tmax_range").get<std::string>();
-  r.rmax_range = j.at("rmax_range").get<std::string>();
-  const Json& c = j.at("criteria");
-  r.criteria_tmax_s = real(c.at("tmax_s"));
-  r.criteria_rmax_m = real(c.at("rmax_m"));
-  r.verify_p_joint = real(c.at("verify_p_joint"));
-  r.validate_p_joint = real(c.at("validate_p_joint"));
-  r.verify_go = c.at("verify_go").get<bool>();
-  r.score.time = error_from_json(j.at("time"));
-  r.score.radius = error_from_json(j.at("radius"));
-  r.score.joint = error_from_json(j.at("joint"));
-  r.score.overconfident_go_cells = j.at("overconfident_go_cells").get<std::size_t>();
-  for (const Json& cell : j.at("overconfident_worst")) {
-    OverconfidentCell o;
-    o.tmax_s = real(cell.at("tmax_s"));
-    o.rmax_m = real(cell.at("rmax_m"));
-    o.verify = real(cell.at("verify"));
-    o.validate = real(cell.at("validate"));
-    o.ci_low = real(cell.at("ci_low"));
-    o.ci_high = real(cell.at("ci_high"));
-    r.score.overconfident.push_back(o);
-  }
-  const Json& s = j.at("seconds");
-  r.calibrate_s = real(s.at("calibrate"));
-  r.validate_s = real(s.at("validate"));
-  r.verify_s = real(s.at("verify"));
-  r.folder = j.at("folder").get<std::string>();
-  r.reproduce = j.at("reproduce").get<std::string>();
-  return r;
 }
 
 void write_crosscheck_part(std::ostream& out, const CrosscheckPart& part) {
@@ -173,7 +110,7 @@ Result<CrosscheckPart> parse_crosscheck_part(std::string_view text, const std::s
     }
     for (std::uint64_t i = h.missions.first; i < h.missions.end; ++i) {
       line = i - h.missions.first + 3;
-      MissionResult r = mission_result_from_json(Json::parse(lines.next_line()));
+      MissionResult r = mission_result_from_json(nlohmann::json::parse(lines.next_line()));
       if (r.name != h.names[i]) {
         return invalid(source + ":" + std::to_string(line) + ": expected mission " + h.names[i] + ", got " + r.name);
       }

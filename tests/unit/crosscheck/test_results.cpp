@@ -9,8 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "p3at/common/number_format.hpp"
 #include "p3at/crosscheck/baseline.hpp"
 #include "p3at/crosscheck/result_json.hpp"
+#include "p3at/crosscheck/separation_curve.hpp"
 
 using namespace p3at::crosscheck;
 
@@ -118,7 +120,8 @@ TEST_CASE("JSON: the keys a machine reads, in order") {
   const std::vector<std::string> expected{"name", "source", "generator_seed", "robots", "error", "evaluable",
                                           "approximations", "calibration", "runs", "failed_runs", "tmax_range",
                                           "rmax_range", "criteria", "time", "radius", "joint",
-                                          "overconfident_go_cells", "overconfident_worst", "within_bounds_strict",
+                                          "overconfident_go_cells", "overconfident_worst", "separation",
+                                          "within_bounds_strict",
                                           "within_bounds_tolerant", "seconds", "folder", "reproduce"};
   CHECK(keys == expected);
   CHECK(j["time"]["strict"] == 0.02);
@@ -136,6 +139,50 @@ TEST_CASE("JSON: the keys a machine reads, in order") {
   CHECK(s["time"]["strict"]["worst"] == 0.02);
   CHECK(s["bounds"]["joint"] == 0.08);
   CHECK(mission_line(r, Bounds{}).find("gen_4") == 0);
+  CHECK(j["separation"].is_null());  // no closest-approach curve: a one-robot mission
+}
+
+TEST_CASE("the closest-approach curve: scored against the runs, kept through JSON, in the summary") {
+  // Runs whose closest approach is spread evenly over [1, 2) m: P(apart > d) = 2 - d.
+  std::vector<p3at::team_sim::RunResult> runs(1000);
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    runs[k].robots.resize(2);
+    runs[k].closest_approach_m = 1.0 + static_cast<double>(k) / 1000.0;
+  }
+  // A verifier sure the robots pass 1.5 m apart: a step from 1 to 0 at 1.5 m,
+  // 0.5 off the runs there, and GO (>= 0.8) where the runs are clearly below.
+  p3at::verifier::SystemOutcome outcome;
+  p3at::verifier::Branch b;
+  b.robots.resize(2);
+  p3at::verifier::SeparationSample s;
+  s.robot_i = 0;
+  s.robot_j = 1;
+  s.difference.mean = Eigen::Vector2d(1.5, 0.0);
+  s.difference.cov = 1e-8 * Eigen::Matrix2d::Identity();
+  s.rigid_s = 20;
+  b.separations = {s};
+  outcome.branches = {b};
+  const auto score = score_separation(outcome, runs, 41);
+  REQUIRE(score.has_value());
+  CHECK(score->error.strict == doctest::Approx(0.5).epsilon(0.05));
+  CHECK(score->overconfident_points > 0);
+  CHECK(score->range.find(':') != std::string::npos);
+  // One robot (no pair): no curve.
+  std::vector<p3at::team_sim::RunResult> alone(10);
+  for (auto& r : alone) r.robots.resize(1);
+  CHECK_FALSE(score_separation(outcome, alone, 41).has_value());
+
+  MissionResult r = result("gen_9", 0.02, 0.01, 0.03, 0);
+  r.separation = score;
+  const MissionResult back = mission_result_from_json(nlohmann::json::parse(mission_result_json(r).dump()));
+  REQUIRE(back.separation.has_value());
+  CHECK(back.separation->error.strict == r.separation->error.strict);
+  CHECK(back.separation->overconfident_points == r.separation->overconfident_points);
+  CHECK(back.separation->range == r.separation->range);
+  CHECK(mission_line(r, Bounds{}).find("apart " + p3at::format_fixed(r.separation->error.strict, 3)) != std::string::npos);
+  const std::string text = summary_text(summarize({r}, Bounds{}), Bounds{});
+  CHECK(text.find("separation curve, strict") != std::string::npos);
+  CHECK(text.find("over-confident separation points") != std::string::npos);
 }
 
 TEST_CASE("baseline: measured + margin for generated missions, the bounds for shipped ones; worse fails") {
@@ -176,6 +223,14 @@ TEST_CASE("baseline: measured + margin for generated missions, the bounds for sh
   CHECK(v[1] == "relay: time strict 0.060 > 0.050");
   CHECK(v[2] == "relay: 1 over-confident GO cells > 0");
   CHECK(v[3].find("gen_99: not in the baseline") == 0);
+  // An over-confident separation point fails on a mission the verifier vouches for, not on one it refuses.
+  MissionResult unsafe = gen;
+  unsafe.separation = SeparationScore{"1:2:0.1", ErrorSummary{}, 2};
+  const auto s = check_baseline({unsafe}, loaded);
+  REQUIRE(s.size() == 1);
+  CHECK(s[0] == "gen_1: 2 over-confident separation points > 0");
+  unsafe.evaluable = false;
+  CHECK(check_baseline({unsafe}, loaded).empty());
   std::ofstream(path) << "{\"missions\": [{\"name\": 3}]}";
   CHECK_THROWS_AS(load_baseline(path), std::runtime_error);
   std::filesystem::remove(path);

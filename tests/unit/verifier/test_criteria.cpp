@@ -323,38 +323,37 @@ TEST_SUITE("evaluation") {
     CHECK(other->probability == doctest::Approx(0.5 * phi(10.0 / 6.0) + 0.3 * phi(-5.0 / 4.0) + 0.15).epsilon(1e-6));
   }
 
-  TEST_CASE("eq. (6): safety must hold at every moment at once: a conservative bound over the samples and the end") {
-    // P(|p - q| > 1 at all times). Only the samples' marginals are known, so
-    // the verifier uses Boole's inequality, P(never close) >= 1 - sum of
-    // P(close at a sample), with "close" widened by the slack two robots at
-    // 0.3 m/s can close between samples a second apart (0.3 m). For a
-    // difference D ~ N(0, s^2 I), P(|D| <= r) = 1 - exp(-r^2 / (2 s^2)).
+  TEST_CASE("eq. (6): safety must hold at every moment at once: moments apart in time add up (Boole)") {
+    // P(|p - q| > 1 at all times). Two samples that are not joined (a gap
+    // between them) are separate stretches: nothing is assumed about how
+    // their errors are related, so P(never close) >= 1 - the sum of P(close).
+    // For a difference D ~ N(0, s^2 I), P(|D| <= r) = 1 - exp(-r^2 / (2 s^2)).
     const v::Criterion c = v::parse_criterion(kEq6, "eq6.crit");
-    const double r = 1.0 + 0.5 * (0.3 + 0.3);
-    const auto close_at = [&](double s2) { return 1.0 - std::exp(-r * r / (2.0 * s2)); };
+    const auto close_at = [](double s2) { return 1.0 - std::exp(-1.0 / (2.0 * s2)); };
     v::SystemOutcome o = one_branch(robot(150, 25, 0, 0, 1.0), robot(160, 25, 0, 0, 1.0));
     v::SeparationSample close;
     close.robot_i = 1;  // either order of the pair
     close.robot_j = 0;
     close.time_s = 40;
+    close.rigid_s = 20;
     close.difference.cov = 0.25 * Eigen::Matrix2d::Identity();
     v::SeparationSample wide = close;
     wide.robot_i = 0;
     wide.robot_j = 1;
+    wide.time_s = 10;
     wide.difference.cov = 4.0 * Eigen::Matrix2d::Identity();
     o.branches[0].separations = {wide, close};
     auto verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
     REQUIRE(verdict.ok());
-    CHECK(verdict->probability == doctest::Approx(0.0));  // the bound is vacuous: 1 - 0.34 - 1.0 - 0.19 < 0
+    // 1 - 0.118 - 0.865 = 0.017 (the grid of the common error: about 1e-3).
+    CHECK(verdict->probability == doctest::Approx(1.0 - close_at(4.0) - close_at(0.25)).epsilon(2e-3).scale(1.0));
     CHECK_FALSE(verdict->holds);
-    // Without that moment: the wide sample and the end (difference variance 1 + 1).
     o.branches[0].separations = {wide};
     verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
     REQUIRE(verdict.ok());
-    CHECK(verdict->probability == doctest::Approx(1.0 - close_at(4.0) - close_at(2.0)).epsilon(1e-5));
-    CHECK_FALSE(verdict->holds);
-    // Robots that end far apart and never came close: safe.
-    o.branches[0].robots[1].final_position.mean = Eigen::Vector2d(10, 0);
+    CHECK(verdict->probability == doctest::Approx(1.0 - close_at(4.0)).epsilon(2e-3).scale(1.0));
+    CHECK(verdict->holds);
+    // Robots that never came within the horizon of each other: safe.
     o.branches[0].separations.clear();
     verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
     REQUIRE(verdict.ok());
@@ -362,25 +361,43 @@ TEST_SUITE("evaluation") {
     CHECK(verdict->probability == doctest::Approx(1.0).epsilon(1e-6));
   }
 
-  TEST_CASE("eq. (6): several moments each 95 % safe are not 95 % safe together") {
-    // Two independent-looking close passes, each with P(close) = 0.05 at the
-    // widened distance: the smallest marginal (0.95, used before) says the
-    // criterion holds at 0.9; the probability of being apart at both can be
-    // as low as 0.9, so the verifier must not say more than 1 - 0.05 - 0.05.
+  TEST_CASE("eq. (6): a pass is one event: the path of the pair's difference with one error, not a sum over its moments") {
+    // The difference drives along y = 1.5 from x = -20 to x = 20 in 10 s
+    // (samples every second, joined), with the error D = m(t) + 0.5 z common
+    // to the pass. It comes within 1 m iff |1.5 + 0.5 z_y| < 1 somewhere on
+    // the line: P = Phi((1 - 1.5) / 0.5) - Phi((-1 - 1.5) / 0.5), whatever
+    // the number of samples. Boole over the 11 samples would count the pass
+    // at x = 0 and its neighbours each once.
     const v::Criterion c = v::parse_criterion(kEq6, "eq6.crit");
-    const double r = 1.3;
-    const double s2 = r * r / (2.0 * -std::log(1.0 - 0.05));  // P(|D| <= r) = 0.05
-    v::SystemOutcome o = one_branch(robot(150, 25, 0, 0, 1e-6), robot(160, 25, 50, 0, 1e-6));
-    v::SeparationSample pass;
-    pass.robot_i = 0;
-    pass.robot_j = 1;
-    pass.difference.cov = s2 * Eigen::Matrix2d::Identity();
-    o.branches[0].separations = {pass, pass};
-    const auto verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
+    v::SystemOutcome o = one_branch(robot(150, 25, 0, 0, 1.0), robot(160, 25, 30, 0, 1.0));
+    const auto pass = [&](double seconds, double rigid_s) {
+      std::vector<v::SeparationSample> samples;
+      for (int k = 0; k <= 10; ++k) {
+        v::SeparationSample s;
+        s.robot_i = 0;
+        s.robot_j = 1;
+        s.time_s = seconds * k / 10.0;
+        s.difference.mean = Eigen::Vector2d(-20.0 + 4.0 * k, 1.5);
+        s.difference.cov = 0.25 * Eigen::Matrix2d::Identity();
+        s.joined = k > 0;
+        s.rigid_s = rigid_s;
+        samples.push_back(s);
+      }
+      return samples;
+    };
+    const double exact = 1.0 - (phi(-1.0) - phi(-5.0));
+    o.branches[0].separations = pass(10.0, 20.0);
+    auto verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
     REQUIRE(verdict.ok());
-    CHECK(verdict->probability == doctest::Approx(0.9).epsilon(1e-4));
-    // A required separation the recorded samples cannot vouch for (they are
-    // kept only within 6 m): refused, probability 0.
+    CHECK(verdict->probability == doctest::Approx(exact).epsilon(2e-3).scale(1.0));
+    // The same pass when the error is redrawn every second (a NOISE redrawn
+    // within the leg): one stretch per second, added up: less, never more.
+    o.branches[0].separations = pass(100.0, 1.0);
+    verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
+    REQUIRE(verdict.ok());
+    CHECK(verdict->probability < exact - 0.05);
+    // A required separation the samples cannot vouch for (they are kept only
+    // within 6 m): refused, probability 0.
     const v::Criterion far = v::parse_criterion(
         "criterion far\nnetwork Delay<t1> ; (Delay<t2> # At<robot1, p>) |\n        Delay<t3> ; (Delay<t4> # At<robot2, q>)\n"
         "constraints\n  t1, t3 > 0\n  P(|p - q| > 4.0) > 0.8\n",
@@ -391,6 +408,38 @@ TEST_SUITE("evaluation") {
     CHECK_FALSE(refused->holds);
   }
 
+  TEST_CASE("eq. (6) negated: together at all times is refused once the pair parts beyond the horizon") {
+    const v::Criterion c = v::parse_criterion(
+        "criterion together\nnetwork Delay<t1> ; (Delay<t2> # At<robot1, p>) |\n        Delay<t3> ; (Delay<t4> # At<robot2, q>)\n"
+        "constraints\n  t1, t3 > 0\n  P(|p - q| < 2.0) > 0.8\n",
+        "together.crit");
+    v::SystemOutcome o = one_branch(robot(150, 25, 0, 0, 1.0), robot(160, 25, 1, 0, 1.0));
+    std::vector<v::SeparationSample> samples;
+    for (int k = 0; k <= 4; ++k) {
+      v::SeparationSample s;
+      s.robot_i = 0;
+      s.robot_j = 1;
+      s.time_s = k;
+      s.difference.mean = Eigen::Vector2d(1.0, 0.0);
+      s.difference.cov = 0.01 * Eigen::Matrix2d::Identity();
+      s.joined = k > 0;
+      s.rigid_s = 20;
+      samples.push_back(s);
+    }
+    o.branches[0].separations = samples;
+    auto verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
+    REQUIRE(verdict.ok());
+    CHECK(verdict->probability == doctest::Approx(1.0).epsilon(1e-4));
+    v::SeparationSample parted = samples.back();
+    parted.time_s = 5;
+    parted.difference.mean = Eigen::Vector2d(7.0, 0.0);
+    parted.beyond_horizon = true;
+    parted.joined = false;
+    o.branches[0].separations.push_back(parted);
+    verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
+    REQUIRE(verdict.ok());
+    CHECK(verdict->probability == doctest::Approx(0.0));
+  }
 
   TEST_CASE("time forms: offsets, reversed sides, lower bounds") {
     const std::string head =

@@ -17,6 +17,7 @@
 #include "p3at/verifier/pars/equivalence.hpp"
 #include "p3at/verifier/pars/printer.hpp"
 #include "p3at/verifier/pars/projection.hpp"
+#include "p3at/verifier/separation.hpp"
 
 namespace p3at::verifier {
 
@@ -211,45 +212,12 @@ class Evaluator {
         return detail::is_less(e.op) ? within : 1.0 - within;
       }
       case detail::Event::Kind::distance_between: {
-        // Safety (eq. 6): "for all times", over the separation samples the
-        // evaluation recorded along the branch (about every second while a
-        // robot moves, at each event, and at the end).
+        // Eq. (6) read as "at all times": over the pair's positions at the
+        // same mission times along the branch (separation.hpp: one common
+        // error per stretch of seconds, Boole over stretches, a lower bound).
         const std::size_t i = bound_.at(e.a).robot, j = bound_.at(e.b).robot;
-        const auto within = [&](const Gaussian2& difference, double r) {
-          return probability_within(difference, Eigen::Vector2d::Zero(), r);
-        };
-        Gaussian2 last;
-        last.mean = b.robots[i].final_position.mean - b.robots[j].final_position.mean;
-        last.cov = b.robots[i].final_position.cov + b.robots[j].final_position.cov;
-        std::vector<const Gaussian2*> moments{&last};
-        for (const SeparationSample& s : b.separations) {
-          if ((s.robot_i == i && s.robot_j == j) || (s.robot_i == j && s.robot_j == i)) moments.push_back(&s.difference);
-        }
-        if (!detail::is_less(e.op)) {
-          // P(never closer than d) >= 1 - sum over the samples of P(closer
-          // than d + slack) (Boole's inequality: the minimum over samples of
-          // the marginal probability, used before, is an upper bound, an
-          // optimistic answer). Between two samples a second apart the
-          // robots' distance can shrink by at most their two top speeds
-          // times half a second: the slack. The evaluation records samples
-          // only where the mean separation is within kSeparationHorizonM
-          // (sequencer.cpp, 6 m); a distance beyond half of it cannot be
-          // checked from them, and is refused (probability 0).
-          constexpr double kSampleSpacingS = 1.0;
-          constexpr double kSeparationHorizonM = 6.0;
-          const double slack = 0.5 * kSampleSpacingS * (m_.robots[i].max_speed_mps + m_.robots[j].max_speed_mps);
-          const double reach = e.value + slack;
-          if (reach > 0.5 * kSeparationHorizonM) return 0.0;
-          double close = 0.0;
-          for (const Gaussian2* d : moments) close += within(*d, reach);
-          return std::max(0.0, 1.0 - close);
-        }
-        // |p - q| < d at all times: the smallest marginal probability over
-        // the samples (an upper bound of the joint: optimistic; the samples
-        // also leave out moments more than 6 m apart).
-        double p = 1.0;
-        for (const Gaussian2* d : moments) p = std::min(p, within(*d, e.value));
-        return p;
+        return detail::is_less(e.op) ? probability_always_within(b, i, j, e.value)
+                                     : probability_always_apart(b, i, j, e.value);
       }
     }
     return 0.0;

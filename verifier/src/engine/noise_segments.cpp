@@ -267,19 +267,23 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
     record->stuck.assign(first_paths, 0);
   }
   const std::size_t every = stepper.sample_every();
-  // The mean path: sums of weight × position per sample index.
-  std::vector<double> sx, sy, sw;
+  // The mean path and the paths' spread about it: sums of weight × position
+  // and of its products per sample index.
+  std::vector<double> sx, sy, sw, sxx, sxy, syy;
+  const auto add_sample = [&](std::size_t i, double weight, double x, double y) {
+    if (sx.size() <= i) {
+      for (auto* v : {&sx, &sy, &sw, &sxx, &sxy, &syy}) v->resize(i + 1, 0.0);
+    }
+    sx[i] += weight * x;
+    sy[i] += weight * y;
+    sw[i] += weight;
+    sxx[i] += weight * x * x;
+    sxy[i] += weight * x * y;
+    syy[i] += weight * y * y;
+  };
   auto sample = [&](const Walker& w) {
     if (w.cycles % every != 0) return;
-    const std::size_t i = w.cycles / every;
-    if (sx.size() <= i) {
-      sx.resize(i + 1, 0.0);
-      sy.resize(i + 1, 0.0);
-      sw.resize(i + 1, 0.0);
-    }
-    sx[i] += w.weight * w.q.x_m;
-    sy[i] += w.weight * w.q.y_m;
-    sw[i] += w.weight;
+    add_sample(w.cycles / every, w.weight, w.q.x_m, w.q.y_m);
   };
 
   const std::size_t length = persistence > 0 ? static_cast<std::size_t>(persistence) : cap + 1;
@@ -400,15 +404,22 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
   }
 
   // Finished paths stay where they ended for the rest of the mean path.
+  const std::size_t samples = sx.size();
   for (const FinishedPath& p : out.finished) {
-    for (std::size_t i = (p.walker.cycles + every - 1) / every; i < sx.size(); ++i) {
-      sx[i] += p.walker.weight * p.walker.q.x_m;
-      sy[i] += p.walker.weight * p.walker.q.y_m;
-      sw[i] += p.walker.weight;
+    for (std::size_t i = (p.walker.cycles + every - 1) / every; i < samples; ++i) {
+      add_sample(i, p.walker.weight, p.walker.q.x_m, p.walker.q.y_m);
     }
   }
-  for (std::size_t i = 0; i < sx.size(); ++i) {
-    if (sw[i] > 0.0) out.mean_path.push_back({static_cast<double>(i), sx[i] / sw[i], sy[i] / sw[i]});
+  for (std::size_t i = 0; i < samples; ++i) {
+    if (!(sw[i] > 0.0)) continue;
+    PathSample s;
+    s.offset_s = static_cast<double>(i);
+    s.x_m = sx[i] / sw[i];
+    s.y_m = sy[i] / sw[i];
+    s.var_xx = std::max(0.0, sxx[i] / sw[i] - s.x_m * s.x_m);
+    s.var_yy = std::max(0.0, syy[i] / sw[i] - s.y_m * s.y_m);
+    s.var_xy = std::clamp(sxy[i] / sw[i] - s.x_m * s.y_m, -std::sqrt(s.var_xx * s.var_yy), std::sqrt(s.var_xx * s.var_yy));
+    out.mean_path.push_back(s);
   }
   return out;
 }

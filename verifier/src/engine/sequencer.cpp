@@ -15,6 +15,8 @@
 #include "engine/interruption.hpp"
 #include "engine/moving_bodies.hpp"
 #include "engine/race.hpp"
+#include "engine/separations.hpp"
+#include "p3at/verifier/separation.hpp"
 #include "engine/state_analysis.hpp"
 
 namespace p3at::verifier::engine {
@@ -25,9 +27,6 @@ constexpr double kNegligible = 1e-9;
 // Bins of the interruption time when a message takes a robot out of a motion
 // state (engine/interruption.hpp): each a branch until the robot's next event.
 constexpr std::size_t kInterruptionBins = 12;
-// Separation samples farther apart than this (mean) cannot matter to a safety
-// criterion about robots coming close; they are not kept.
-constexpr double kSeparationHorizonM = 6.0;
 
 Mixture1 negated(const Mixture1& x) {
   Mixture1 out = x;
@@ -213,6 +212,8 @@ struct Track {
   std::vector<std::size_t> visits;
   /// The motion within that bin, a position spread on top of `spread`.
   Eigen::Matrix2d extra_cov = Eigen::Matrix2d::Zero();
+  /// Where it is predicted to be over mission time (separation criteria).
+  Timeline timeline;
 
   Eigen::Vector2d true_mean() const { return {base.x_m + error.mean(0), base.y_m + error.mean(1)}; }
   Gaussian2 true_position() const {
@@ -231,7 +232,6 @@ struct BranchState {
   std::vector<std::optional<Mixture1>> delivery_at;  ///< per message: the mission time it is delivered
   std::vector<Lineage> delivery_lineage;             ///< per message: whose events decided that time
   Lineage clock_lineage = 0;                          ///< whose events decided the clock
-  std::vector<SeparationSample> separations;
   std::vector<std::size_t> event_robots;
 };
 
@@ -428,7 +428,7 @@ class Sequencer {
     ctx.movers = moving_teammates(b, i, state);
     track.analysis = cached_analysis(ctx, i, state, track);
     outcome_.subsystems += 1;
-    record_path_separations(b, i);
+    note_path(b, i);
 
     // Exits driven by messages already on their way.
     for (const std::size_t t : spec.states[state].outgoing) {
@@ -801,30 +801,60 @@ class Sequencer {
     }
   }
 
-  void record_separation(BranchState& b, std::size_t i, std::size_t j, double time_s, const Gaussian2& pi) {
-    const Gaussian2 pj = b.robots[j].true_position();
-    SeparationSample s;
-    s.robot_i = i;
-    s.robot_j = j;
-    s.time_s = time_s;
-    s.difference.mean = pi.mean - pj.mean;
-    s.difference.cov = pi.cov + pj.cov;
-    if (s.difference.mean.norm() <= kSeparationHorizonM) b.separations.push_back(s);
+  /// Robot i's predicted path through the state it has just entered, on its
+  /// timeline from the branch clock (what it had predicted from then on, for
+  /// the state it left, is dropped).
+  void note_path(BranchState& b, std::size_t i) {
+    Track& t = b.robots[i];
+    const double t0 = b.clock.mean();
+    const std::vector<PathSample>& path = t.analysis.path;
+    const double rigid = rigid_span(i, t.state, path.empty() ? 0.0 : path.back().offset_s);
+    t.timeline.note(t0, t.true_position(), rigid);
+    if (path.empty()) return;
+    // The true pose's error goes from the entry's to the state's end's (the
+    // analysis's) along the distance driven, as for a teammate's body
+    // (engine/moving_bodies): a heading error turns the path about its start,
+    // so a robot whose wheels differ drives a straight line off its
+    // odometry's, metres off by the leg's end.
+    std::vector<double> driven(path.size(), 0.0);
+    for (std::size_t k = 1; k < path.size(); ++k) {
+      driven[k] = driven[k - 1] + std::hypot(path[k].x_m - path[k - 1].x_m, path[k].y_m - path[k - 1].y_m);
+    }
+    const double total = driven.back();
+    const Eigen::Vector2d entry_mean = t.error.mean.head<2>();
+    const Eigen::Vector2d mean_growth = t.analysis.error.mean.head<2>() - entry_mean;
+    const Eigen::Matrix2d entry_cov = t.error.cov.topLeftCorner<2, 2>();
+    const Eigen::Matrix2d cov_growth = floored_psd(t.analysis.error.cov.topLeftCorner<2, 2>() - entry_cov);
+    // When it entered the state is known only as the branch clock's spread:
+    // at a given mission time it is that much further along its path, or
+    // behind (its velocity there times the clock's sd).
+    const double entry_var = b.clock.variance();
+    for (std::size_t k = 0; k < path.size(); ++k) {
+      const PathSample& s = path[k];
+      if (!(s.offset_s > 0.0)) continue;  // the entry, noted above
+      const double f = total > 1e-6 ? driven[k] / total : s.offset_s / std::max(path.back().offset_s, 1e-9);
+      Gaussian2 p;
+      p.mean = Eigen::Vector2d(s.x_m, s.y_m) + entry_mean + f * mean_growth;
+      Eigen::Matrix2d paths;
+      paths << s.var_xx, s.var_xy, s.var_xy, s.var_yy;
+      const PathSample& before = path[k > 0 ? k - 1 : k];
+      const PathSample& after = path[std::min(k + 1, path.size() - 1)];
+      const double span = after.offset_s - before.offset_s;
+      const Eigen::Vector2d velocity = Eigen::Vector2d(after.x_m - before.x_m, after.y_m - before.y_m) / std::max(span, 1e-9);
+      p.cov = t.spread + entry_cov + f * cov_growth + paths + entry_var * velocity * velocity.transpose();
+      t.timeline.note(t0 + s.offset_s, p, rigid);
+    }
   }
 
-  /// Robot i's path through its new state against where the others stand.
-  void record_path_separations(BranchState& b, std::size_t i) {
-    const Track& t = b.robots[i];
-    const double t0 = b.clock.mean();
-    const Eigen::Vector2d shift(t.error.mean(0), t.error.mean(1));
-    for (const PathSample& s : t.analysis.path) {
-      Gaussian2 p;
-      p.mean = Eigen::Vector2d(s.x_m, s.y_m) + shift;
-      p.cov = t.spread + t.error.cov.topLeftCorner<2, 2>();
-      for (std::size_t j = 0; j < b.robots.size(); ++j) {
-        if (j != i) record_separation(b, i, j, t0 + s.offset_s, p);
-      }
-    }
+  /// For how long robot i's error in `state` (a path of `path_s` seconds)
+  /// can be taken as one fixed draw: a NOISE redrawn within the leg moves it
+  /// off its mean path afresh at every draw; otherwise (held for the leg, or
+  /// none) the stretch's limit.
+  double rigid_span(std::size_t i, std::size_t state, double path_s) const {
+    const auto* go = std::get_if<mission::GoToGuardedParams>(&mission_.robots[i].states[state].behavior);
+    if (go == nullptr || !(go->noise_gain > 0.0) || go->noise_persistence_cycles <= 0) return kSeparationWindowS;
+    const double held_s = static_cast<double>(go->noise_persistence_cycles) * cycle_s(i);
+    return held_s >= path_s ? kSeparationWindowS : std::min(kSeparationWindowS, std::max(held_s, cycle_s(i)));
   }
 
   /// One event (Def. 10 step) of branch b: the first abort condition to hold.
@@ -1044,11 +1074,7 @@ class Sequencer {
       t.rest_points_within = t.analysis.rest_offsets_within;
       t.extra_cov.setZero();
     }
-    const double now = b.clock.mean();
-    const Gaussian2 pi = t.true_position();
-    for (std::size_t j = 0; j < b.robots.size(); ++j) {
-      if (j != i) record_separation(b, i, j, now, pi);
-    }
+    t.timeline.note(b.clock.mean(), t.true_position(), kSeparationWindowS);
     enter(std::move(b), i, spec.transitions[transition].to, out);
   }
 
@@ -1111,11 +1137,7 @@ class Sequencer {
       ti.spread = bin.spread;
       ti.spread_points = bin.offsets;
       ti.extra_cov = bin.within;
-      const double now = child.clock.mean();
-      const Gaussian2 pi = ti.true_position();
-      for (std::size_t j = 0; j < child.robots.size(); ++j) {
-        if (j != i) record_separation(child, i, j, now, pi);
-      }
+      ti.timeline.note(child.clock.mean(), ti.true_position(), kSeparationWindowS);
       enter(std::move(child), i, to, out);
     }
   }
@@ -1124,7 +1146,9 @@ class Sequencer {
     Branch out;
     out.weight = b.weight;
     out.completion_time_s = b.clock;
-    out.separations = std::move(b.separations);
+    std::vector<const Timeline*> timelines;
+    for (const Track& t : b.robots) timelines.push_back(&t.timeline);
+    out.separations = pair_separations(timelines, kSeparationHorizonM);
     out.event_robots = std::move(b.event_robots);
     for (Track& t : b.robots) {
       RobotOutcome r;
@@ -1275,9 +1299,11 @@ class Sequencer {
     }
     a.clock_lineage |= b.clock_lineage;
     if (wb > wa) {
-      a.separations = b.separations;
       a.event_robots = b.event_robots;
-      for (std::size_t i = 0; i < a.robots.size(); ++i) a.robots[i].trace = b.robots[i].trace;
+      for (std::size_t i = 0; i < a.robots.size(); ++i) {
+        a.robots[i].trace = b.robots[i].trace;
+        a.robots[i].timeline = b.robots[i].timeline;
+      }
     }
     a.weight = w;
   }

@@ -51,10 +51,13 @@ struct StartPoint {
   Eigen::Vector3d error_offset = Eigen::Vector3d::Zero();
 };
 
-/// A mean odometric position sample along the state's path.
+/// A mean odometric position sample along the state's path, and the spread
+/// of the NOISE paths' positions about it at that moment (how far along the
+/// leg they have got differs from path to path).
 struct PathSample {
   double offset_s = 0.0;
   double x_m = 0.0, y_m = 0.0;
+  double var_xx = 0.0, var_xy = 0.0, var_yy = 0.0;
 };
 
 struct StateAnalysis {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "p3at/crosscheck/scoring.hpp"
+#include "p3at/crosscheck/separation_curve.hpp"
 #include "p3at/mission_gen/generator.hpp"
 
 namespace p3at::crosscheck {
@@ -78,6 +79,9 @@ struct MissionResult {
   double verify_p_joint = 0.0, validate_p_joint = 0.0;  ///< at the mission's own criteria
   bool verify_go = false;
   MissionScore score;
+  /// The closest-approach curve (separation_curve.hpp); absent for one robot,
+  /// or when no run's robots came within 3 m of each other.
+  std::optional<SeparationScore> separation;
   double calibrate_s = 0.0, verify_s = 0.0, validate_s = 0.0;   ///< CPU-thread wall time of each step
   std::string folder;                    ///< where its files are ("" when not written)
   std::string reproduce;                 ///< one command that redoes this mission alone

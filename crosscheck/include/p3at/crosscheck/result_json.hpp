@@ -30,6 +30,9 @@ struct CampaignSummary {
   std::size_t overconfident_missions = 0;    ///< evaluable missions with at least one
   std::size_t overconfident_cells_not_evaluable = 0;  ///< the same on missions verify refused to vouch for
   std::uint64_t runs = 0;                    ///< validation runs in all
+  /// The closest-approach curve, over the missions that have one.
+  MetricStats separation_strict, separation_tolerant;
+  std::size_t separation_overconfident_points = 0, separation_overconfident_missions = 0;
 };
 
 CampaignSummary summarize(const std::vector<MissionResult>& results, const Bounds& bounds);

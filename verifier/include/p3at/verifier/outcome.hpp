@@ -50,13 +50,33 @@ inline double final_within(const RobotOutcome& r, const Eigen::Vector2d& centre,
 }
 
 /// A sample of two robots' relative true position at some moment, for safety
-/// criteria (eq. 6): difference = position(i) - position(j).
+/// criteria (eq. 6): difference = position(i) - position(j), both at the same
+/// mission time (each robot's predicted position then, engine/separations.hpp).
 struct SeparationSample {
   std::size_t robot_i = 0;
   std::size_t robot_j = 0;
   double time_s = 0.0;          ///< mean mission time of the sample
   Gaussian2 difference;
+  /// The pair's previous sample (in the branch's list) is the moment just
+  /// before this one: between the two the difference moves along the segment
+  /// joining them. False for a pair's first sample and after a gap (samples
+  /// whose mean distance was beyond the horizon are not kept).
+  bool joined = false;
+  /// The pair's first sample beyond kSeparationHorizonM, kept (the others
+  /// are not) so that a criterion about robots staying together sees that
+  /// they parted; a criterion about robots coming close ignores it.
+  bool beyond_horizon = false;
+  /// For how long around this moment the pair's error can be taken as one
+  /// fixed draw (p3at/verifier/separation.hpp): the shorter of the two
+  /// robots' (a NOISE redrawn every k cycles moves a robot off its mean path
+  /// afresh every k cycles; held for the whole leg, or absent, the error
+  /// changes only as the odometry's drift grows).
+  double rigid_s = 0.0;
 };
+
+/// Separation samples whose mean distance is beyond this are not kept: they
+/// cannot matter to a criterion about robots coming within half of it.
+inline constexpr double kSeparationHorizonM = 6.0;
 
 /// One ordering hypothesis of the robots' abort conditions.
 struct Branch {
