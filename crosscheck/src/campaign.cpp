@@ -434,7 +434,7 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
                             curve_points(mid.time, lo.time, hi.time), completed_radius_curve(runs, rax.values, timeout_s),
                             wjoint, &decided_read->grid->p_joint);
     // The separation criterion's curve, from the same evaluation and runs.
-    if (mission.robots.size() >= 2) r.separation = score_separation(*outcome, runs, o.rmax_points);
+    if (mission.robots.size() >= 2) r.separation = score_separation(*outcome, runs, o.rmax_points, 2.0 * floors.radius_m);
 
     // 7. How to redo it: the whole mission, or each step in its folder.
     r.reproduce = o.command_prefix + " " +

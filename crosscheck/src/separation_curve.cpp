@@ -13,7 +13,8 @@
 namespace p3at::crosscheck {
 
 std::optional<SeparationScore> score_separation(const verifier::SystemOutcome& outcome,
-                                                const std::vector<team_sim::RunResult>& runs, std::size_t points) {
+                                                const std::vector<team_sim::RunResult>& runs, std::size_t points,
+                                                double step_m) {
   std::vector<double> closest;
   for (const team_sim::RunResult& r : runs) {
     if (r.robots.size() >= 2 && std::isfinite(r.closest_approach_m)) closest.push_back(r.closest_approach_m);
@@ -51,7 +52,8 @@ std::optional<SeparationScore> score_separation(const verifier::SystemOutcome& o
     w.ci_high = ci.high;
     w.p_shift_low = static_cast<double>(measured(d * (1.0 - kShiftFraction))) / static_cast<double>(n);
     w.p_shift_high = static_cast<double>(measured(d * (1.0 + kShiftFraction))) / static_cast<double>(n);
-    s.overconfident_points += overconfident_go(v, w);
+    const double decided = verifier::probability_no_pair_within(outcome, verifier::decided_separation(d, true, step_m));
+    s.overconfident_points += overconfident_go(decided, w);
     verify.push_back(v);
     validation.push_back(w);
   }

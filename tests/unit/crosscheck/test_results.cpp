@@ -162,7 +162,7 @@ TEST_CASE("the closest-approach curve: scored against the runs, kept through JSO
   s.rigid_s = 20;
   b.separations = {s};
   outcome.branches = {b};
-  const auto score = score_separation(outcome, runs, 41);
+  const auto score = score_separation(outcome, runs, 41, 0.0);
   REQUIRE(score.has_value());
   CHECK(score->error.strict == doctest::Approx(0.5).epsilon(0.05));
   CHECK(score->overconfident_points > 0);
@@ -170,7 +170,13 @@ TEST_CASE("the closest-approach curve: scored against the runs, kept through JSO
   // One robot (no pair): no curve.
   std::vector<p3at::team_sim::RunResult> alone(10);
   for (auto& r : alone) r.robots.resize(1);
-  CHECK_FALSE(score_separation(outcome, alone, 41).has_value());
+  CHECK_FALSE(score_separation(outcome, alone, 41, 0.0).has_value());
+  // Decided a step stricter (0.3 m: the step at 1.5 m is passed from d = 1.2
+  // m), fewer points are over-confident; the raw curve's error is the same.
+  const auto decided = score_separation(outcome, runs, 41, 0.3);
+  REQUIRE(decided.has_value());
+  CHECK(decided->overconfident_points < score->overconfident_points);
+  CHECK(decided->error.strict == score->error.strict);
 
   MissionResult r = result("gen_9", 0.02, 0.01, 0.03, 0);
   r.separation = score;

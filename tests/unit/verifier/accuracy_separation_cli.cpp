@@ -108,7 +108,13 @@ TEST_CASE("crossing_behind: P(never within d) against 4,000 runs' closest approa
   std::filesystem::remove(crit);
   const nlohmann::json j = nlohmann::json::parse(r.out);
   const double from_file = j.at("criteria").at(0).at("probability").get<double>();
-  CHECK(from_file == doctest::Approx(verifier::probability_no_pair_within(outcome.value(), 2.5)).epsilon(1e-9));
+  // Decided as the gate decides Rmax: 1 % and at least a step (both robots'
+  // top speed for one cycle: 0.06 m here) stricter.
+  const double step = 2.0 * verifier::decision_floors(mission, models).radius_m;
+  CHECK(step == doctest::Approx(0.06));
+  CHECK(from_file == doctest::Approx(verifier::probability_no_pair_within(
+                                         outcome.value(), verifier::decided_separation(2.5, true, step)))
+                         .epsilon(1e-9));
   CHECK(from_file < 0.75);  // the runs' fraction is 0.708; it said 1.000 before
   CHECK_FALSE(j.at("criteria").at(0).at("holds").get<bool>());
 }

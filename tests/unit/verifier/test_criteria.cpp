@@ -11,6 +11,7 @@
 
 #include "p3at/mission/loader.hpp"
 #include "p3at/verifier/criteria.hpp"
+#include "p3at/verifier/separation.hpp"
 #include "p3at/verifier/pars/printer.hpp"
 
 namespace v = p3at::verifier;
@@ -327,9 +328,12 @@ TEST_SUITE("evaluation") {
     // P(|p - q| > 1 at all times). Two samples that are not joined (a gap
     // between them) are separate stretches: nothing is assumed about how
     // their errors are related, so P(never close) >= 1 - the sum of P(close).
-    // For a difference D ~ N(0, s^2 I), P(|D| <= r) = 1 - exp(-r^2 / (2 s^2)).
+    // For a difference D ~ N(0, s^2 I), P(|D| <= r) = 1 - exp(-r^2 / (2 s^2)),
+    // at r = 1.01: the separation is decided 1 % stricter (decided_separation()).
     const v::Criterion c = v::parse_criterion(kEq6, "eq6.crit");
-    const auto close_at = [](double s2) { return 1.0 - std::exp(-1.0 / (2.0 * s2)); };
+    const double r = v::decided_separation(1.0, true, 0.0);
+    CHECK(r == doctest::Approx(1.01));
+    const auto close_at = [&](double s2) { return 1.0 - std::exp(-r * r / (2.0 * s2)); };
     v::SystemOutcome o = one_branch(robot(150, 25, 0, 0, 1.0), robot(160, 25, 0, 0, 1.0));
     v::SeparationSample close;
     close.robot_i = 1;  // either order of the pair
@@ -364,8 +368,8 @@ TEST_SUITE("evaluation") {
   TEST_CASE("eq. (6): a pass is one event: the path of the pair's difference with one error, not a sum over its moments") {
     // The difference drives along y = 1.5 from x = -20 to x = 20 in 10 s
     // (samples every second, joined), with the error D = m(t) + 0.5 z common
-    // to the pass. It comes within 1 m iff |1.5 + 0.5 z_y| < 1 somewhere on
-    // the line: P = Phi((1 - 1.5) / 0.5) - Phi((-1 - 1.5) / 0.5), whatever
+    // to the pass. It comes within d iff |1.5 + 0.5 z_y| < d somewhere on
+    // the line: P = Phi((d - 1.5) / 0.5) - Phi((-d - 1.5) / 0.5), whatever
     // the number of samples. Boole over the 11 samples would count the pass
     // at x = 0 and its neighbours each once.
     const v::Criterion c = v::parse_criterion(kEq6, "eq6.crit");
@@ -385,7 +389,8 @@ TEST_SUITE("evaluation") {
       }
       return samples;
     };
-    const double exact = 1.0 - (phi(-1.0) - phi(-5.0));
+    const double d = v::decided_separation(1.0, true, 0.0);  // 1.01 m: 1 % stricter
+    const double exact = 1.0 - (phi((d - 1.5) / 0.5) - phi((-d - 1.5) / 0.5));
     o.branches[0].separations = pass(10.0, 20.0);
     auto verdict = v::evaluate_criterion(c, two_robots(), o, 0.5);
     REQUIRE(verdict.ok());

@@ -67,7 +67,8 @@ struct Group {
 
 class Evaluator {
  public:
-  Evaluator(const Criterion& c, const mission::Mission& m, const SystemOutcome& o) : c_(c), m_(m), o_(o) {}
+  Evaluator(const Criterion& c, const mission::Mission& m, const SystemOutcome& o, double separation_step_m)
+      : c_(c), m_(m), o_(o), separation_step_m_(separation_step_m) {}
 
   Result<CriterionVerdict> run(double default_required) {
     const std::string where = c_.source.empty() ? "criterion '" + c_.name + "'"
@@ -214,10 +215,12 @@ class Evaluator {
       case detail::Event::Kind::distance_between: {
         // Eq. (6) read as "at all times": over the pair's positions at the
         // same mission times along the branch (separation.hpp: one common
-        // error per stretch of seconds, Boole over stretches, a lower bound).
+        // error per stretch of seconds, Boole over stretches, a lower bound),
+        // decided with the gate's margin.
         const std::size_t i = bound_.at(e.a).robot, j = bound_.at(e.b).robot;
-        return detail::is_less(e.op) ? probability_always_within(b, i, j, e.value)
-                                     : probability_always_apart(b, i, j, e.value);
+        const bool apart = !detail::is_less(e.op);
+        const double d = decided_separation(e.value, apart, separation_step_m_);
+        return apart ? probability_always_apart(b, i, j, d) : probability_always_within(b, i, j, d);
       }
     }
     return 0.0;
@@ -413,6 +416,7 @@ class Evaluator {
   const Criterion& c_;
   const mission::Mission& m_;
   const SystemOutcome& o_;
+  double separation_step_m_ = 0.0;
   std::vector<std::size_t> robots_;
   std::map<std::string, Symbol> symbols_;
   std::map<std::string, Symbol> bound_;
@@ -421,8 +425,9 @@ class Evaluator {
 }  // namespace
 
 Result<CriterionVerdict> evaluate_criterion(const Criterion& criterion, const mission::Mission& mission,
-                                            const SystemOutcome& outcome, double default_required_probability) {
-  return Evaluator(criterion, mission, outcome).run(default_required_probability);
+                                            const SystemOutcome& outcome, double default_required_probability,
+                                            double separation_step_m) {
+  return Evaluator(criterion, mission, outcome, separation_step_m).run(default_required_probability);
 }
 
 }  // namespace p3at::verifier

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include "p3at/verifier/mog.hpp"
+#include "p3at/verifier/verify.hpp"
 
 namespace p3at::verifier {
 namespace {
@@ -158,6 +159,11 @@ double stretch_mass(const std::vector<Point>& stretch, double d, bool close) {
 bool beyond_reach(double d_m) { return !(d_m <= 0.5 * kSeparationHorizonM); }
 
 }  // namespace
+
+double decided_separation(double d_m, bool apart, double step_m) {
+  return apart ? std::max(d_m * (1.0 + kDecisionMargin), d_m + step_m)
+               : std::max(0.0, std::min(d_m * (1.0 - kDecisionMargin), d_m - step_m));
+}
 
 double probability_always_apart(const Branch& b, std::size_t i, std::size_t j, double d_m) {
   if (beyond_reach(d_m)) return 0.0;

@@ -605,7 +605,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   const std::int64_t persistence = noisy ? go->noise_persistence_cycles : 0;
   const double cycle_s = ctx.model->kinematics.cycle_s;
   // (Twice the directions for short held legs brought
-  // tests/data/accuracy_open/short_legs' time curve from 0.059 to 0.047, but
+  // tests/data/accuracy/short_legs' time curve from 0.059 to 0.047, but
   // doubled bench_verifier's CPU: Bounding Overwatch's point 11 -> 19 ms,
   // relay 32 x 20 0.66 -> 1.3 s. Not done.)
   const std::size_t directions = noisy ? std::max<std::size_t>(1, ctx.models->budget.noise_sigma_points) : 1;

@@ -344,7 +344,10 @@ Result<VerifyResult> verify_outcome(const mission::Mission& mission, const Model
     } catch (const CriterionError& e) {
       return make_error(Error::Code::invalid_argument, e.what());
     }
-    Result<CriterionVerdict> verdict = evaluate_criterion(criterion, mission, o, r.threshold);
+    // A separation is decided a step stricter: the distance two robots at
+    // the team's top speed close in one cycle (twice the radius floor).
+    Result<CriterionVerdict> verdict =
+        evaluate_criterion(criterion, mission, o, r.threshold, 2.0 * decision_floors(mission, models).radius_m);
     if (!verdict) return verdict.error();  // the message already names the file
     r.criteria.push_back(*verdict);
   }

@@ -27,7 +27,12 @@ struct SeparationScore {
 
 /// nullopt for a one-robot mission, and when no run's robots came within
 /// the distance the verifier can vouch for (half of kSeparationHorizonM).
+/// The errors are the raw curve's; the over-confident points are counted on
+/// what the gate decides at each d (verifier::decided_separation() with
+/// `step_m`, the step verify decides separations with), as for the joint
+/// surface's cells.
 std::optional<SeparationScore> score_separation(const verifier::SystemOutcome& outcome,
-                                                const std::vector<team_sim::RunResult>& runs, std::size_t points);
+                                                const std::vector<team_sim::RunResult>& runs, std::size_t points,
+                                                double step_m);
 
 }  // namespace p3at::crosscheck

@@ -93,14 +93,22 @@ std::string to_string(const Constraint& constraint);
 /// probability is the product of its comparisons' probabilities, summed over
 /// the branches by weight (pruned and blocked mass count as failure; so does a
 /// branch where a robot of the criterion never finishes). A distance between
-/// two robots' positions must hold at every separation sample of the branch
-/// and at the end: its probability is the smallest over them. Bare constraints
+/// two robots' positions must hold at every moment (eq. 6): its probability
+/// is separation.hpp's lower bound over the pair's positions at the same
+/// times along the branch. Bare constraints
 /// form one group that must reach `default_required_probability`; each
 /// P(...) > x its own. The verdict reports the group with the least margin
 /// and holds when every group holds. An Error explains a criterion that does
 /// not fit the system (unknown robot, wrong composition, unbindable variable).
+///
+/// `separation_step_m`: a separation is decided as the gate decides Rmax
+/// (separation.hpp, decided_separation()): "never within d" at d 1 % larger
+/// and at least this much larger, "always within d" as much smaller (verify
+/// passes the distance two robots close in one cycle at their top speeds;
+/// 0 decides at d itself).
 Result<CriterionVerdict> evaluate_criterion(const Criterion& criterion, const mission::Mission& mission,
-                                            const SystemOutcome& outcome, double default_required_probability);
+                                            const SystemOutcome& outcome, double default_required_probability,
+                                            double separation_step_m = 0.0);
 
 /// The paper's eq. (7) as a criterion: every robot finishes by tmax_s and ends
 /// within rmax_m of its goal, all together (no probability bound: the caller's

@@ -26,6 +26,15 @@ namespace p3at::verifier {
 /// The longest stretch of samples taken as one common error (seconds).
 inline constexpr double kSeparationWindowS = 20.0;
 
+/// The distance a separation is decided at, as the gate decides Rmax
+/// (verify.hpp, decision_point()): "never within d" (apart = true) at d 1 %
+/// larger and at least step_m larger; "always within d" as much smaller
+/// (never below 0). Why: a distance that is deterministic (two robots that
+/// start 1 m apart) puts a step in the curve, and the model's millimetres
+/// decide which side of it d falls (Bounding Overwatch's runs all come within
+/// 1.000 m: their start; verify said 0.93 at d = 1.0).
+double decided_separation(double d_m, bool apart, double step_m);
+
 /// P(robots i and j are never within d_m of each other) in branch b: a lower
 /// bound (Boole over stretches). 0 when d_m is beyond half of
 /// kSeparationHorizonM (the samples do not cover it: cannot be vouched for).
