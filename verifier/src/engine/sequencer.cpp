@@ -371,7 +371,7 @@ class Sequencer {
     track.since_entry = Mixture1::point(0.0);
     track.since_hidden = 0.0;
     if (trace) track.trace.push_back(spec.states[state].name);
-    if (!track.rest_points.empty() && brakes_to_rest(spec, state)) {
+    if (!track.rest_points.empty() && brakes_to_rest(spec, state, robot_models_[i]->kinematics)) {
       // The points are relative to where the mean path comes to rest; their
       // mean is how much farther the paths run out on average (the braking
       // distance grows with the square of the speed). The base takes that

@@ -769,7 +769,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
     // relative to where the mean comes to rest.
     const bool stops_after =
         std::any_of(robot.states[state].outgoing.begin(), robot.states[state].outgoing.end(),
-                    [&](std::size_t t) { return brakes_to_rest(robot, robot.transitions[t].to); });
+                    [&](std::size_t t) { return brakes_to_rest(robot, robot.transitions[t].to, ctx.model->kinematics); });
     if (stops_after) {
       const Eigen::Vector2d goal(go->goal.x_m, go->goal.y_m);
       const Kinematics& kin = ctx.model->kinematics;
@@ -928,13 +928,53 @@ StateAnalysis analyze_state(const StateContext& context, std::size_t state_index
   return a;
 }
 
-bool brakes_to_rest(const mission::RobotSpec& robot, std::size_t state) {
+namespace {
+
+/// Whether a Spin state certainly lasts until the robot's translation, which
+/// it commands to zero, has braked to rest: every exit is a HasTurned whose
+/// angle, at the rate the firmware allows, takes at least as long as braking
+/// from the robot's top speed.
+bool spin_outlasts_braking(const mission::RobotSpec& robot, std::size_t state, const Kinematics& kin) {
+  const auto* spin = std::get_if<mission::SpinParams>(&robot.states[state].behavior);
+  if (spin == nullptr || !(kin.trans_decel_mps2 > 0.0)) return false;
+  const double rate_radps = std::min(std::abs(spin->rate_deg_s) * kPi / 180.0, kin.max_rot_vel_radps);
+  if (!(rate_radps > 0.0)) return false;
+  const double braking_s = robot.max_speed_mps / kin.trans_decel_mps2 + kin.cycle_s;
+  const auto& out = robot.states[state].outgoing;
+  return !out.empty() && std::all_of(out.begin(), out.end(), [&](std::size_t t) {
+    const auto* turned = std::get_if<mission::HasTurnedParams>(&robot.transitions[t].trigger);
+    return turned != nullptr && (turned->angle_deg - turned->offset_deg) * kPi / 180.0 / rate_radps >= braking_s;
+  });
+}
+
+bool brakes_to_rest_within(const mission::RobotSpec& robot, std::size_t state, const Kinematics& kin,
+                           std::size_t depth) {
   if (robot.is_final(state)) return true;
   const mission::BehaviorKind kind = robot.states[state].kind();
-  if (kind == mission::BehaviorKind::go_to_guarded || kind == mission::BehaviorKind::spin) return false;
-  // analyze_still brakes an acknowledgement-timed state only for its most
-  // likely length, which may end before the robot is at rest.
-  return !has_trigger_kind(robot, state, mission::TriggerKind::message_sent);
+  if (kind == mission::BehaviorKind::go_to_guarded) return false;
+  // A Spin turns in place: the translation it comes in with brakes as in a
+  // Stop, the heading turning under it, if the turn outlasts the braking
+  // (a scout that turns to face the hall on arrival at 0.6 m/s runs out 2 to
+  // 7 cm by its own firing speed: tests/data/accuracy/mixed_speeds).
+  if (kind == mission::BehaviorKind::spin) return spin_outlasts_braking(robot, state, kin);
+  if (!has_trigger_kind(robot, state, mission::TriggerKind::message_sent)) return true;
+  // analyze_still brakes an acknowledgement-timed state (a Notify) only for
+  // its most likely length, which may end before the robot is at rest; the
+  // braking goes on in the state its acknowledgement leads to. If every such
+  // state holds the robot still too (a Stop, another Notify, a long enough
+  // Spin), the robot comes to rest before it moves again, wherever the
+  // acknowledgement cut the Notify. The depth bounds a cycle of still states.
+  if (depth >= robot.states.size()) return false;
+  const auto& out = robot.states[state].outgoing;
+  return !out.empty() && std::all_of(out.begin(), out.end(), [&](std::size_t t) {
+    return brakes_to_rest_within(robot, robot.transitions[t].to, kin, depth + 1);
+  });
+}
+
+}  // namespace
+
+bool brakes_to_rest(const mission::RobotSpec& robot, std::size_t state, const Kinematics& kin) {
+  return brakes_to_rest_within(robot, state, kin, 0);
 }
 
 StateAnalysis analyze_final(const StateContext& context, std::size_t state_index, const BaseState& start,

@@ -139,10 +139,12 @@ std::vector<StartPoint> equal_weight_points(const std::vector<StartPoint>& point
                                             const std::vector<double>& key, std::size_t n);
 
 /// Whether entering `state` stops the robot until it is at rest (a final
-/// state, or a still one that is not timed by an acknowledgement), so that
+/// state, a still one that is not timed by an acknowledgement, a Spin whose
+/// turn outlasts braking from top speed, or an acknowledgement-timed one
+/// whose acknowledgement leads only to such states), so that
 /// the previous leg's paths each run out their own braking
 /// (StateAnalysis::rest_offsets).
-bool brakes_to_rest(const mission::RobotSpec& robot, std::size_t state);
+bool brakes_to_rest(const mission::RobotSpec& robot, std::size_t state, const Kinematics& kin);
 
 /// Final state `state_index` of the robot, entered with odometric base `start`
 /// (its velocities those at the firing) and error `error_start`: the executive
