@@ -937,18 +937,21 @@ namespace {
 bool spin_outlasts_braking(const mission::RobotSpec& robot, std::size_t state, const Kinematics& kin) {
   const auto* spin = std::get_if<mission::SpinParams>(&robot.states[state].behavior);
   if (spin == nullptr || !(kin.trans_decel_mps2 > 0.0)) return false;
-  const double rate_radps = std::min(std::abs(spin->rate_deg_s) * kPi / 180.0, kin.max_rot_vel_radps);
+  const double rate_radps = std::min(std::abs(spin->rate_deg_s) * kDegToRad, kin.max_rot_vel_radps);
   if (!(rate_radps > 0.0)) return false;
   const double braking_s = robot.max_speed_mps / kin.trans_decel_mps2 + kin.cycle_s;
   const auto& out = robot.states[state].outgoing;
   return !out.empty() && std::all_of(out.begin(), out.end(), [&](std::size_t t) {
     const auto* turned = std::get_if<mission::HasTurnedParams>(&robot.transitions[t].trigger);
-    return turned != nullptr && (turned->angle_deg - turned->offset_deg) * kPi / 180.0 / rate_radps >= braking_s;
+    return turned != nullptr && (turned->angle_deg - turned->offset_deg) * kDegToRad / rate_radps >= braking_s;
   });
 }
 
-bool brakes_to_rest_within(const mission::RobotSpec& robot, std::size_t state, const Kinematics& kin,
-                           std::size_t depth) {
+/// Where the search of brakes_to_rest stands on an acknowledgement-timed state.
+enum class StillSearch : unsigned char { unseen, on_path, braking, moving };
+
+bool brakes_to_rest_from(const mission::RobotSpec& robot, std::size_t state, const Kinematics& kin,
+                         std::vector<StillSearch>& seen) {
   if (robot.is_final(state)) return true;
   const mission::BehaviorKind kind = robot.states[state].kind();
   if (kind == mission::BehaviorKind::go_to_guarded) return false;
@@ -963,18 +966,25 @@ bool brakes_to_rest_within(const mission::RobotSpec& robot, std::size_t state, c
   // braking goes on in the state its acknowledgement leads to. If every such
   // state holds the robot still too (a Stop, another Notify, a long enough
   // Spin), the robot comes to rest before it moves again, wherever the
-  // acknowledgement cut the Notify. The depth bounds a cycle of still states.
-  if (depth >= robot.states.size()) return false;
+  // acknowledgement cut the Notify. A cycle of acknowledgement-timed states
+  // is not counted; each state is searched once (a chain of Notifies with
+  // several exits each would otherwise be walked once per path through it).
+  if (seen[state] == StillSearch::on_path) return false;
+  if (seen[state] != StillSearch::unseen) return seen[state] == StillSearch::braking;
+  seen[state] = StillSearch::on_path;
   const auto& out = robot.states[state].outgoing;
-  return !out.empty() && std::all_of(out.begin(), out.end(), [&](std::size_t t) {
-    return brakes_to_rest_within(robot, robot.transitions[t].to, kin, depth + 1);
+  const bool braking = !out.empty() && std::all_of(out.begin(), out.end(), [&](std::size_t t) {
+    return brakes_to_rest_from(robot, robot.transitions[t].to, kin, seen);
   });
+  seen[state] = braking ? StillSearch::braking : StillSearch::moving;
+  return braking;
 }
 
 }  // namespace
 
 bool brakes_to_rest(const mission::RobotSpec& robot, std::size_t state, const Kinematics& kin) {
-  return brakes_to_rest_within(robot, state, kin, 0);
+  std::vector<StillSearch> seen(robot.states.size(), StillSearch::unseen);
+  return brakes_to_rest_from(robot, state, kin, seen);
 }
 
 StateAnalysis analyze_final(const StateContext& context, std::size_t state_index, const BaseState& start,
