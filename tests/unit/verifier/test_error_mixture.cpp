@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include <Eigen/Eigenvalues>
+
 #include "engine/error_mixture.hpp"
 
 using namespace p3at::verifier::engine;
@@ -96,4 +98,66 @@ TEST_CASE("floored_psd: total less what the components explain, never negative")
   CHECK(c(1, 1) == doctest::Approx(0.01));
   const Eigen::Matrix2d floored = floored_psd(-explained_cov(m).topLeftCorner<2, 2>());
   CHECK(floored.minCoeff() >= -1e-15);
+}
+
+namespace {
+
+/// Two components 12 % / 88 % apart along the direction `deg` (weights as
+/// gen_5157's robot1: the runs that turned the other way), centred.
+ErrorMixture apart_along(double deg, double length_m) {
+  const double a = deg * 3.14159265358979323846 / 180.0;
+  const Eigen::Vector3d u(std::cos(a), std::sin(a), 0.0);
+  return {{0.12, 0.88 * length_m * u, Eigen::Matrix3d::Zero()}, {0.88, -0.12 * length_m * u, Eigen::Matrix3d::Zero()}};
+}
+
+Eigen::Matrix2d rank_one(double deg, double var) {
+  const double a = deg * 3.14159265358979323846 / 180.0;
+  const Eigen::Vector2d u(std::cos(a), std::sin(a));
+  return var * u * u.transpose();
+}
+
+double largest(const Eigen::Matrix2d& m) { return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(m).eigenvalues()(1); }
+
+}  // namespace
+
+TEST_CASE("aligned_to_total: a few degrees between two descriptions of one spread leave no residual") {
+  // The components' spread along 58 degrees, the total's (propagated along
+  // the paths) along 61.5 degrees and a little longer: total minus what the
+  // components explain, floored, keeps a 5 cm sd across the spread that
+  // would widen every component.
+  const ErrorMixture m = apart_along(58.0, 0.7);
+  const Eigen::Matrix2d total = rank_one(61.5, 0.0521) + 1e-6 * Eigen::Matrix2d::Identity();
+  const double before = largest(floored_psd(total - explained_cov(m).topLeftCorner<2, 2>()));
+  CHECK(std::sqrt(before) > 0.02);
+  const ErrorMixture a = aligned_to_total(m, total);
+  REQUIRE(a.size() == 2);
+  CHECK(total_weight(a) == doctest::Approx(1.0));
+  CHECK(mean_delta(a).norm() < 1e-12);
+  // What is left is along the spread (the total is a little longer), not across it.
+  const Eigen::Matrix2d left = floored_psd(total - explained_cov(a).topLeftCorner<2, 2>());
+  const double across_deg = (61.5 + 90.0) * 3.14159265358979323846 / 180.0;
+  const Eigen::Vector2d across(std::cos(across_deg), std::sin(across_deg));
+  CHECK(std::sqrt(across.dot(left * across)) < 0.005);
+  // Turned onto the total's axis: the far component now points along 61.5 degrees.
+  CHECK(std::atan2(a[0].delta(1), a[0].delta(0)) * 180.0 / 3.14159265358979323846 == doctest::Approx(61.5).epsilon(1e-6));
+  // Headings are left as they were.
+  CHECK(a[0].delta(2) == m[0].delta(2));
+}
+
+TEST_CASE("aligned_to_total: never lengthens the spread, and leaves other shapes alone") {
+  // Components explaining more than the total along the axis are shortened to it.
+  const ErrorMixture m = apart_along(30.0, 0.8);
+  const Eigen::Matrix2d small = rank_one(30.0, 0.02) + 1e-6 * Eigen::Matrix2d::Identity();
+  const ErrorMixture s = aligned_to_total(m, small);
+  CHECK(largest(explained_cov(s).topLeftCorner<2, 2>()) == doctest::Approx(largest(small)).epsilon(1e-3));
+  // Axes 40 degrees apart: a different shape, not a disagreement. Unchanged.
+  const Eigen::Matrix2d other = rank_one(70.0, 0.07);
+  const ErrorMixture o = aligned_to_total(m, other);
+  CHECK((o[0].delta - m[0].delta).norm() == 0.0);
+  // Components that are most of nothing (a between spread under half the
+  // total along its axis) are left too.
+  const Eigen::Matrix2d wide = rank_one(30.0, 0.5);
+  CHECK((aligned_to_total(m, wide)[0].delta - m[0].delta).norm() == 0.0);
+  // One component, or none: nothing to align.
+  CHECK(aligned_to_total(ErrorMixture{}, wide).empty());
 }

@@ -1,6 +1,7 @@
 #include "engine/error_mixture.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include <Eigen/Eigenvalues>
@@ -24,6 +25,13 @@ double merge_cost(const ErrorComponent& a, const ErrorComponent& b) {
   d(2) *= kHeadingLeverM;
   return a.weight * b.weight / (a.weight + b.weight) * d.squaredNorm();
 }
+
+// aligned_to_total acts only when the components' spread between them is at
+// least this share of the total along its main axis, and the two axes are
+// at most kMaxAlignRad apart (a small disagreement of two approximations,
+// not a different shape).
+constexpr double kBetweenDominates = 0.5;
+constexpr double kMaxAlignRad = 20.0 * 3.14159265358979323846 / 180.0;
 
 // Components this close (heading counted as above) are merged whatever the budget.
 constexpr double kSameM = 1e-3;
@@ -188,6 +196,36 @@ Eigen::Matrix2d floored_psd(Eigen::Matrix2d m) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(m);
   const Eigen::Vector2d values = eig.eigenvalues().cwiseMax(0.0);
   return eig.eigenvectors() * values.asDiagonal() * eig.eigenvectors().transpose();
+}
+
+}  // namespace p3at::verifier::engine
+
+namespace p3at::verifier::engine {
+
+ErrorMixture aligned_to_total(const ErrorMixture& m, const Eigen::Matrix2d& total) {
+  if (m.size() < 2) return m;
+  Eigen::Matrix2d between = Eigen::Matrix2d::Zero();
+  for (const ErrorComponent& c : m) between += c.weight * c.delta.head<2>() * c.delta.head<2>().transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> b(between), t(total);
+  const double lambda = b.eigenvalues()(1), mu = t.eigenvalues()(1);
+  if (!(lambda > 0.0) || !(mu > 0.0) || lambda < kBetweenDominates * mu) return m;
+  const Eigen::Vector2d u = b.eigenvectors().col(1);
+  Eigen::Vector2d v = t.eigenvectors().col(1);
+  if (u.dot(v) < 0.0) v = -v;
+  const double angle = std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v));
+  if (std::abs(angle) > kMaxAlignRad) return m;
+  Eigen::Matrix2d turn;
+  turn << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+  // Never more spread along the axis than the total has there.
+  const double stretch = std::sqrt(std::min(1.0, mu / lambda));
+  const Eigen::Matrix2d shape = Eigen::Matrix2d::Identity() + (stretch - 1.0) * v * v.transpose();
+  const Eigen::Matrix2d map = shape * turn;
+  ErrorMixture out = m;
+  for (ErrorComponent& c : out) {
+    c.delta.head<2>() = map * c.delta.head<2>();
+    c.cov.topLeftCorner<2, 2>() = map * c.cov.topLeftCorner<2, 2>() * map.transpose();
+  }
+  return out;
 }
 
 }  // namespace p3at::verifier::engine

@@ -1161,7 +1161,10 @@ class Sequencer {
       if (!t.spread_points.empty() || !t.error_mix.empty()) {
         // With end points, they carry the last leg's paths' errors; without,
         // the whole mixture does.
-        const ErrorMixture& kept = t.spread_points.empty() ? t.error_mix : t.error_mix_before_leg;
+        // (turned onto the total's axis where the two describe one spread:
+        // error_mixture.hpp, aligned_to_total)
+        const ErrorMixture kept = aligned_to_total(t.spread_points.empty() ? t.error_mix : t.error_mix_before_leg,
+                                                   t.error.cov.topLeftCorner<2, 2>());
         Eigen::Matrix2d shown = explained_cov(kept).topLeftCorner<2, 2>();
         if (!t.spread_points.empty()) shown += t.leg_paths_cov;
         const Eigen::Matrix2d common = floored_psd(t.error.cov.topLeftCorner<2, 2>() - shown) + t.extra_cov +

@@ -14,6 +14,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "engine/interruption.hpp"
+#include "engine/next_turn.hpp"
 #include "engine/noise_segments.hpp"
 #include "engine/trigger_phase.hpp"
 
@@ -596,6 +597,26 @@ std::vector<Walker> entry_walkers(const mission::GoToGuardedParams* go, const Ba
   return out;
 }
 
+/// Whether a NOISE redraw falls while some held path is still on its
+/// approach: from `approach_cycles` before the fastest path fires to the
+/// path's own firing. A held path is the robot under one draw for the whole
+/// leg; it tells where the robot ends only if the approach sees one draw.
+/// A direction that holds the robot off its goal (circling it in the
+/// slow-down) is redrawn in a real run and leaves at another heading: on the
+/// fresh sweep's gen_5157 robot1's first leg (dropoff 1.55 m, gain 0.125,
+/// persistence 170) half the held paths outlast the first redraw, and 12 %
+/// of 1,000 runs leave facing 60-100 degrees further left than any held path.
+bool redrawn_on_approach(const NoiseQuadrature& held, std::int64_t persistence, double approach_cycles) {
+  if (persistence <= 0 || held.finished.empty()) return false;
+  std::size_t fastest = held.finished.front().walker.cycles;
+  for (const FinishedPath& p : held.finished) fastest = std::min(fastest, p.walker.cycles);
+  const double from = std::max(0.0, static_cast<double>(fastest) - approach_cycles);
+  const auto draw = [&](double cycles) { return std::floor(cycles / static_cast<double>(persistence)); };
+  return std::any_of(held.finished.begin(), held.finished.end(), [&](const FinishedPath& p) {
+    return draw(static_cast<double>(p.walker.cycles)) > draw(from);
+  });
+}
+
 StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const BaseState& start,
                              const ErrorState& error_start, const std::vector<StartPoint>& start_points) {
   const mission::RobotSpec& robot = *ctx.robot;
@@ -645,15 +666,18 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   // paths, 1.0216 m with the segment quadrature, 1.0155 m in 2,000
   // validation runs; the radius curve there rises within 6 cm, so 6 mm is
   // 0.05 of it. Where a held direction pins the robot (a strong NOISE in a
-  // long slow-down) there are no held ends to use.
+  // long slow-down) there are no held ends to use, and where a held path is
+  // still on its approach when the real NOISE is redrawn
+  // (redrawn_on_approach) its end is not one a run reaches.
   NoiseQuadrature held;
   NoiseQuadrature* ends = &quad;
-  const bool draw_spans_approach =
-      go != nullptr && static_cast<double>(persistence) * cycle_s * robot.max_speed_mps >= 2.0 * go->dropoff_m;
+  const double approach_cycles =
+      go != nullptr ? 2.0 * go->dropoff_m / std::max(robot.max_speed_mps, 1e-3) / cycle_s : 0.0;
+  const bool draw_spans_approach = go != nullptr && static_cast<double>(persistence) >= approach_cycles;
   if (quad.redraws > 0 && (draw_spans_approach || trajectory)) {
     held = noise_quadrature(stepper, entries, 0, directions, directions, directions, cap, trajectory.get());
     a.cycles_simulated += held.cycles_simulated;
-    if (draw_spans_approach && held.stuck <= 0.0) ends = &held;
+    if (draw_spans_approach && held.stuck <= 0.0 && !redrawn_on_approach(held, persistence, approach_cycles)) ends = &held;
   }
   // The sequencer sends the paths that got through on with the exits and
   // the stuck ones to wait for the message (engine/interruption.hpp,
@@ -713,15 +737,24 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
     // Where the state leaves the robot, for the next state's entry.
     std::vector<StartPoint> points;
     std::vector<double> weights, keys;
+    // In the order that matters to what comes next: the turn toward the
+    // next leg's goal (left-turners and right-turners apart; averaged by
+    // place they made one heading, and every path then turned the same way),
+    // the heading when a Spin carries it on, else where around the goal.
+    const NextTurn next = next_turn(robot, state);
     const double centre =
         go != nullptr ? std::atan2(a.end.y_m - go->goal.y_m, a.end.x_m - go->goal.x_m) : a.end.theta_rad;
     for (std::size_t j = 0; j < ends->finished.size(); ++j) {
       const Walker& w = ends->finished[j].walker;
       points.push_back({w.q, explained[j]});
       weights.push_back(w.weight);
-      keys.push_back(go != nullptr
-                         ? std::remainder(std::atan2(w.q.y_m - go->goal.y_m, w.q.x_m - go->goal.x_m) - centre, 2.0 * kPi)
-                         : w.q.theta_rad - centre);
+      if (go == nullptr || next.kind == NextTurn::Kind::spin) {
+        keys.push_back(w.q.theta_rad - a.end.theta_rad);
+      } else if (next.kind == NextTurn::Kind::leg) {
+        keys.push_back(std::remainder(std::atan2(next.goal.y_m - w.q.y_m, next.goal.x_m - w.q.x_m) - w.q.theta_rad, 2.0 * kPi));
+      } else {
+        keys.push_back(std::remainder(std::atan2(w.q.y_m - go->goal.y_m, w.q.x_m - go->goal.x_m) - centre, 2.0 * kPi));
+      }
     }
     a.end_points = equal_weight_points(points, weights, keys, kStartPointsCarried);
     if (go == nullptr && start_points.size() > 1) {
