@@ -45,17 +45,29 @@ p3at::mission::Mission robot(const std::string& states, const std::string& trans
   return p3at::mission::parse_mission(text, "next.yaml");
 }
 
-NextTurn after_leg(const p3at::mission::Mission& m) { return next_turn(m.robots.at(0), 0); }
+/// What next_turn says after robot1's leg, copied out while the mission (which
+/// NextTurn::leg points into) is alive.
+struct AfterLeg {
+  NextTurn::Kind kind = NextTurn::Kind::unknown;
+  bool has_leg = false;
+  p3at::mission::Point2 goal;
+};
+
+AfterLeg after_leg(const p3at::mission::Mission& m) {
+  const NextTurn n = next_turn(m.robots.at(0), 0);
+  return {n.kind, n.leg != nullptr, n.leg != nullptr ? n.leg->goal : p3at::mission::Point2{}};
+}
 
 }  // namespace
 
 TEST_CASE("the next leg's goal, straight after the leg or through a Notify and a waiting Stop") {
-  const NextTurn direct = after_leg(robot("      - {name: leg2, behavior: GoToGuarded, params: {goal: [3, 6]}}\n",
+  const AfterLeg direct = after_leg(robot("      - {name: leg2, behavior: GoToGuarded, params: {goal: [3, 6]}}\n",
                                           "      - {from: leg, to: leg2, trigger: AtGoal, params: {radius_m: 0.3}}\n"));
   CHECK(direct.kind == NextTurn::Kind::leg);
+  REQUIRE(direct.has_leg);
   CHECK(direct.goal.x_m == 3.0);
   CHECK(direct.goal.y_m == 6.0);
-  const NextTurn through = after_leg(
+  const AfterLeg through = after_leg(
       robot("      - {name: tell, behavior: Notify, params: {message: r}}\n"
             "      - {name: hold, behavior: Stop}\n"
             "      - {name: leg2, behavior: GoToGuarded, params: {goal: [-2, 4]}}\n",
@@ -64,12 +76,13 @@ TEST_CASE("the next leg's goal, straight after the leg or through a Notify and a
             "      - {from: hold, to: leg2, trigger: Notified, params: {message: m}}\n",
             true));
   CHECK(through.kind == NextTurn::Kind::leg);
+  REQUIRE(through.has_leg);
   CHECK(through.goal.x_m == -2.0);
   CHECK(through.goal.y_m == 4.0);
 }
 
 TEST_CASE("a Spin next carries the heading") {
-  const NextTurn spin = after_leg(robot("      - {name: turn, behavior: Spin, params: {rate_deg_s: 30}}\n"
+  const AfterLeg spin = after_leg(robot("      - {name: turn, behavior: Spin, params: {rate_deg_s: 30}}\n"
                                         "      - {name: leg2, behavior: GoToGuarded, params: {goal: [3, 6]}}\n",
                                         "      - {from: leg, to: turn, trigger: AtGoal, params: {radius_m: 0.3}}\n"
                                         "      - {from: turn, to: leg2, trigger: HasTurned, params: {angle_deg: 90}}\n"));
@@ -86,27 +99,29 @@ TEST_CASE("nothing to order by: a final state, or two exits toward different goa
                         "      - {from: leg, to: b, trigger: AtGoal, params: {radius_m: 0.6}}\n"))
             .kind == NextTurn::Kind::unknown);
   // Two exits to legs with one goal still agree on it.
-  const NextTurn same = after_leg(robot("      - {name: a, behavior: GoToGuarded, params: {goal: [3, 6]}}\n"
+  const AfterLeg same = after_leg(robot("      - {name: a, behavior: GoToGuarded, params: {goal: [3, 6]}}\n"
                                         "      - {name: b, behavior: GoToGuarded, params: {goal: [3, 6]}}\n",
                                         "      - {from: leg, to: a, trigger: AtGoal, params: {radius_m: 0.3}}\n"
                                         "      - {from: leg, to: b, trigger: AtGoal, params: {radius_m: 0.6}}\n"));
   CHECK(same.kind == NextTurn::Kind::leg);
+  REQUIRE(same.has_leg);
   CHECK(same.goal.x_m == 3.0);
 }
 
 TEST_CASE("a message's exit out of the leg is not followed") {
-  const NextTurn n = after_leg(robot("      - {name: home, behavior: GoToGuarded, params: {goal: [0, 0]}}\n"
+  const AfterLeg n = after_leg(robot("      - {name: home, behavior: GoToGuarded, params: {goal: [0, 0]}}\n"
                                      "      - {name: leg2, behavior: GoToGuarded, params: {goal: [3, 6]}}\n",
                                      "      - {from: leg, to: home, trigger: Notified, params: {message: m}}\n"
                                      "      - {from: leg, to: leg2, trigger: AtGoal, params: {radius_m: 0.3}}\n"));
   CHECK(n.kind == NextTurn::Kind::leg);
+  REQUIRE(n.has_leg);
   CHECK(n.goal.x_m == 3.0);
   CHECK(n.goal.y_m == 6.0);
 }
 
 TEST_CASE("a loop of still states ends the search") {
   // a -> b -> a, and b's way out only to a final Stop.
-  const NextTurn n = after_leg(robot("      - {name: a, behavior: Notify, params: {message: r}}\n"
+  const AfterLeg n = after_leg(robot("      - {name: a, behavior: Notify, params: {message: r}}\n"
                                      "      - {name: b, behavior: Stop}\n"
                                      "      - {name: done, behavior: Stop}\n",
                                      "      - {from: leg, to: a, trigger: AtGoal, params: {radius_m: 0.3}}\n"

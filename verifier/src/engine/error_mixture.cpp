@@ -198,10 +198,6 @@ Eigen::Matrix2d floored_psd(Eigen::Matrix2d m) {
   return eig.eigenvectors() * values.asDiagonal() * eig.eigenvectors().transpose();
 }
 
-}  // namespace p3at::verifier::engine
-
-namespace p3at::verifier::engine {
-
 ErrorMixture aligned_to_total(const ErrorMixture& m, const Eigen::Matrix2d& total) {
   if (m.size() < 2) return m;
   Eigen::Matrix2d between = Eigen::Matrix2d::Zero();

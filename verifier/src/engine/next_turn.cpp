@@ -6,8 +6,8 @@
 namespace p3at::verifier::engine {
 
 NextTurn next_turn(const mission::RobotSpec& robot, std::size_t state) {
-  NextTurn out;
-  bool have_goal = false;
+  const mission::GoToGuardedParams* leg = nullptr;
+  bool spin = false;
   std::vector<char> seen(robot.states.size(), 0);
   std::vector<std::size_t> todo;
   const auto follow = [&](std::size_t from, bool messages_too) {
@@ -28,18 +28,17 @@ NextTurn next_turn(const mission::RobotSpec& robot, std::size_t state) {
     todo.pop_back();
     const mission::BehaviorParams& b = robot.states[s].behavior;
     if (const auto* go = std::get_if<mission::GoToGuardedParams>(&b)) {
-      if (have_goal && !(go->goal == out.goal)) return {};
-      out.goal = go->goal;
-      have_goal = true;
+      if (leg != nullptr && !(go->goal == leg->goal)) return {};
+      leg = go;
     } else if (std::holds_alternative<mission::SpinParams>(b)) {
-      out.kind = NextTurn::Kind::spin;
+      spin = true;
     } else {
       follow(s, true);
     }
   }
-  if (out.kind == NextTurn::Kind::spin) return {NextTurn::Kind::spin, {}};
-  if (have_goal) out.kind = NextTurn::Kind::leg;
-  return out;
+  if (spin) return {NextTurn::Kind::spin, nullptr};
+  if (leg != nullptr) return {NextTurn::Kind::leg, leg};
+  return {};
 }
 
 }  // namespace p3at::verifier::engine

@@ -14,11 +14,13 @@ namespace p3at::verifier::engine {
 struct NextTurn {
   enum class Kind {
     unknown,  ///< nothing turns next, or the exits lead to legs with different goals
-    leg,      ///< every self-timed exit leads (through still states) to a leg toward `goal`
+    leg,      ///< every self-timed exit leads (through still states) to a leg toward `leg->goal`
     spin,     ///< an exit leads (through still states) to a Spin: the heading is carried through it
   };
   Kind kind = Kind::unknown;
-  mission::Point2 goal;
+  /// The next leg's parameters (one of them when several legs share the
+  /// goal), in the robot's spec; null unless `kind` is `leg`.
+  const mission::GoToGuardedParams* leg = nullptr;
 };
 
 /// Follows the state's self-timed exits (AtGoal, HasTurned, MessageSent)

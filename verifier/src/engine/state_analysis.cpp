@@ -751,7 +751,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
       if (go == nullptr || next.kind == NextTurn::Kind::spin) {
         keys.push_back(w.q.theta_rad - a.end.theta_rad);
       } else if (next.kind == NextTurn::Kind::leg) {
-        keys.push_back(std::remainder(std::atan2(next.goal.y_m - w.q.y_m, next.goal.x_m - w.q.x_m) - w.q.theta_rad, 2.0 * kPi));
+        keys.push_back(entry_key(w.q, next.leg, a.end.theta_rad));
       } else {
         keys.push_back(std::remainder(std::atan2(w.q.y_m - go->goal.y_m, w.q.x_m - go->goal.x_m) - centre, 2.0 * kPi));
       }
