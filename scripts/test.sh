@@ -17,7 +17,9 @@ jobs="$(nproc)"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
-step() { printf '\n==== %s ====\n' "$*"; }
+# Each stage's heading says when it began (time since the script started), so
+# a CI log shows where its minutes go: grep '^====' LOG.
+step() { printf '\n==== %s (at %dm%02ds) ====\n' "$*" $((SECONDS / 60)) $((SECONDS % 60)); }
 
 step "release build"
 bash scripts/build.sh release

@@ -23,14 +23,17 @@ std::string data(const std::string& name) {
   return std::string(P3AT_SOURCE_DIR) + "/tests/unit/verifier/data/moving_teammates/" + name;
 }
 
-constexpr int kDriver = 1;  // the robot that meets the parked teammate (the file's second)
+// The robot that meets the parked teammate: the file's second in park.yaml,
+// its first in park_first_in_file.yaml.
+std::size_t driver_index(const std::string& mission) { return mission.find("first_in_file") != std::string::npos ? 0 : 1; }
 
 double predicted_finish(const std::string& mission) {
   const auto r = p3at::test::run_command(vipars() + " verify " + data(mission) + " --models " + data("models.yaml") + " --json");
   REQUIRE(!r.out.empty());
   const nlohmann::json j = nlohmann::json::parse(r.out);
-  REQUIRE(j.at("robots").at(kDriver).at("name") == "driver");
-  return j.at("robots").at(kDriver).at("finish_mean_s").get<double>();
+  const std::size_t driver = driver_index(mission);
+  REQUIRE(j.at("robots").at(driver).at("name") == "driver");
+  return j.at("robots").at(driver).at("finish_mean_s").get<double>();
 }
 
 double simulated_finish(const std::string& mission) {
@@ -38,8 +41,9 @@ double simulated_finish(const std::string& mission) {
                                          " --runs 300 --seed 1 --json");
   REQUIRE(r.status == 0);
   const nlohmann::json j = nlohmann::json::parse(r.out);
+  const std::size_t driver = driver_index(mission);
   double sum = 0.0;
-  for (const nlohmann::json& run : j.at("runs")) sum += run.at("robots").at(kDriver).at("end_time_s").get<double>();
+  for (const nlohmann::json& run : j.at("runs")) sum += run.at("robots").at(driver).at("end_time_s").get<double>();
   return sum / static_cast<double>(j.at("runs").size());
 }
 
@@ -57,6 +61,37 @@ TEST_CASE("the parking leg is the teammate's next one (after a Notify): predicte
   const double simulated = simulated_finish("park_after_notify.yaml");
   INFO("verify " << predicted << " s, 300 runs " << simulated << " s");
   CHECK(std::abs(predicted - simulated) < 2.0);
+}
+
+// The driver is listed first: at launch it enters its leg before the parker
+// has entered its own, so the parker's first leg is predicted ahead from its
+// start. Before, it was not seen at all: verify 33.5 s.
+TEST_CASE("a teammate listed later in the file, parking on its first leg, is seen") {
+  const double predicted = predicted_finish("park_first_in_file.yaml");
+  const double simulated = simulated_finish("park_first_in_file.yaml");
+  INFO("verify " << predicted << " s, 300 runs " << simulated << " s");
+  CHECK(std::abs(predicted - simulated) < 2.0);
+}
+
+// A teammate listed later parks beside the driver's goal and holds it off its
+// AtGoal circle (the fresh sweep's gen_5115 in small): every run times out.
+// Before, verify said the driver finished at 33 s with P 1.000: a wrong GO.
+TEST_CASE("a teammate parked beside a robot's goal from launch: the robot is held off it") {
+  const auto v = p3at::test::run_command(vipars() + " verify " + data("parked_by_goal.yaml") + " --models " +
+                                         data("models.yaml") + " --json");
+  REQUIRE(!v.out.empty());
+  const nlohmann::json verified = nlohmann::json::parse(v.out);
+  const double p_verify = verified.at("p_time").get<double>();
+
+  const auto r = p3at::test::run_command(vipars() + " validate " + data("parked_by_goal.yaml") + " --world " +
+                                         data("world_parked_by_goal.yaml") + " --trials 100 --seed 1 --json");
+  REQUIRE(r.status != 2);
+  const nlohmann::json validated = nlohmann::json::parse(r.out);
+  const double p_runs = validated.at("p_time").get<double>();
+  INFO("verify P(t <= Tmax) " << p_verify << ", 100 runs " << p_runs);
+  CHECK(p_runs < 0.05);  // the mission: the driver is held off its goal
+  CHECK(p_verify < 0.05);
+  CHECK(verified.at("blocked_mass").get<double>() > 0.95);
 }
 
 namespace {

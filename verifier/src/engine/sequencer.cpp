@@ -284,6 +284,9 @@ class Sequencer {
       t.lineage = lineage_of(b.robots.size());
       constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
       t.base = BaseState{r.start.x_m, r.start.y_m, r.start.theta_deg * kDegToRad, 0.0, 0.0};
+      // The state it will enter at launch: a robot entered earlier (file
+      // order) sees it there (obstacles_near, moving_teammates).
+      t.state = r.initial;
       b.robots.push_back(std::move(t));
     }
     std::vector<BranchState> branches{std::move(b)};
@@ -594,8 +597,24 @@ class Sequencer {
         }
         continue;
       }
-      // Not entered yet (robots enter their first state in file order at
-      // launch): nothing is known of its leg, so it is left out as before.
+      if (entering_ != kNone && j > entering_) {
+        // Not entered yet: robots enter their first state in file order at
+        // launch, so robot i is analysed before j's first leg is. That leg
+        // and the one after are predicted ahead from where j stands (walls
+        // only), as a driving teammate's next leg is. Left out, a teammate
+        // that parks by i's goal on its first legs was not seen: generated
+        // gen_5115's robot2 parks 0.5 m from robot1's first goal and waits,
+        // robot1 is pinned short of it in every run, and verify had robot1
+        // there at 85 s.
+        StillChain now;
+        now.seconds = 0.0;
+        now.leg = tj.state;
+        const std::vector<TeammateLeg> legs = legs_ahead(j, now, tj.base, tj.error, 0.0, 2);
+        if (legs.empty()) continue;
+        MovingBody body = follow_legs(legs, cycle_s(i));
+        if (passes_near(body, from.x(), from.y(), go->goal.x_m, go->goal.y_m, reach)) bodies->add(std::move(body));
+        continue;
+      }
       if (tj.analysis.path.empty()) continue;
       std::vector<TeammateLeg> legs(1);
       TeammateLeg& leg = legs[0];
@@ -618,8 +637,8 @@ class Sequencer {
         break;
       }
       if (std::isfinite(leg.ends_in_s) && after.leg) {
-        if (auto ahead = leg_ahead(j, after, tj.analysis.end, tj.analysis.error, leg.ends_in_s + leg.still_for_s)) {
-          legs.push_back(*ahead);
+        for (TeammateLeg& ahead : legs_ahead(j, after, tj.analysis.end, tj.analysis.error, leg.ends_in_s + leg.still_for_s, 1)) {
+          legs.push_back(ahead);
         }
       }
       MovingBody body = follow_legs(legs, cycle_s(i));
@@ -681,43 +700,56 @@ class Sequencer {
     return chain;
   }
 
-  /// The leg robot j drives after the still states of `chain` (which must
-  /// lead to one), predicted ahead (look_ahead) from `from`, where those
-  /// states begin, turned by their Spins and braked to rest, and entered
-  /// `entered_s` after the analysed robot's entry: the leg moving_teammates
-  /// follows, its exit at the mean of its exits' durations and the stillness
-  /// after the likeliest one (a third leg is not predicted: it drops out when
-  /// it would drive on). Nullopt when the prediction has no path.
-  std::optional<TeammateLeg> leg_ahead(std::size_t j, const StillChain& chain, const BaseState& from,
-                                       const ErrorState& error, double entered_s) {
-    BaseState start = from;
-    start.theta_rad += chain.turn_rad;
-    start.trans_mps = start.rot_radps = 0.0;  // the still states in between brake
-    const std::shared_ptr<const StateAnalysis> next = look_ahead(j, *chain.leg, start, error);
-    if (!next || next->path.empty()) return std::nullopt;
+  /// The legs robot j drives after the still states of `chain` (which must
+  /// lead to one), up to `count` of them, predicted ahead (look_ahead) from
+  /// `from`, where those states begin, turned by their Spins and braked to
+  /// rest, the first entered `entered_s` after the analysed robot's entry:
+  /// the legs moving_teammates follows. Each one's exit is at the mean of its
+  /// exits' durations, followed by the stillness after the likeliest one; the
+  /// next leg starts from its mean end when that stillness is finite (the
+  /// body drops out after the last leg given when it would drive on). Stops
+  /// early where a prediction has no path.
+  std::vector<TeammateLeg> legs_ahead(std::size_t j, StillChain chain, BaseState from, ErrorState error,
+                                      double entered_s, std::size_t count) {
     const mission::RobotSpec& spec = mission_.robots[j];
-    TeammateLeg ahead;
-    ahead.path = &next->path;  // the analysis lives in look_ahead_cache_
-    ahead.start = start;
-    ahead.end = next->end;
-    ahead.error_start = error.mean;
-    ahead.error_end = next->error.mean;
-    ahead.entered_s = entered_s;
-    double mass = 0.0, mean = 0.0, best = 0.0;
-    std::size_t to = 0;
-    for (const TimedExit& e : next->exits) {
-      mass += e.probability;
-      mean += e.probability * e.duration_s.mean();
-      if (e.probability > best) {
-        best = e.probability;
-        to = spec.transitions[e.transition].to;
+    std::vector<TeammateLeg> legs;
+    while (legs.size() < count && chain.leg) {
+      BaseState start = from;
+      start.theta_rad += chain.turn_rad;
+      start.trans_mps = start.rot_radps = 0.0;  // the still states in between brake
+      const std::shared_ptr<const StateAnalysis> next = look_ahead(j, *chain.leg, start, error);
+      if (!next || next->path.empty()) break;
+      TeammateLeg ahead;
+      ahead.path = &next->path;  // the analysis lives in look_ahead_cache_
+      ahead.start = start;
+      ahead.end = next->end;
+      ahead.error_start = error.mean;
+      ahead.error_end = next->error.mean;
+      ahead.entered_s = entered_s;
+      double mass = 0.0, mean = 0.0, best = 0.0;
+      std::size_t to = 0;
+      for (const TimedExit& e : next->exits) {
+        mass += e.probability;
+        mean += e.probability * e.duration_s.mean();
+        if (e.probability > best) {
+          best = e.probability;
+          to = spec.transitions[e.transition].to;
+        }
       }
-    }
-    if (mass > 0.0) {
+      if (!(mass > 0.0)) {  // no self-timed exit: it drives to its goal and stays
+        legs.push_back(ahead);
+        break;
+      }
       ahead.ends_in_s = ahead.entered_s + mean / mass;
-      ahead.still_for_s = still_after(j, to).seconds;
+      chain = still_after(j, to);
+      ahead.still_for_s = chain.seconds;
+      legs.push_back(ahead);
+      if (!std::isfinite(chain.seconds)) break;
+      entered_s = ahead.ends_in_s + chain.seconds;
+      from = next->end;
+      error = next->error;
     }
-    return ahead;
+    return legs;
   }
 
   /// Robot j holding still now (a Notify, a Spin, a Stop) and driving off by
@@ -748,8 +780,7 @@ class Sequencer {
     if (!off) return std::nullopt;
     const auto& [drives_in_s, chain] = *off;
     const Track& tj = b.robots[j];
-    std::vector<TeammateLeg> legs;
-    if (auto ahead = leg_ahead(j, chain, tj.base, tj.error, drives_in_s)) legs.push_back(*ahead);
+    const std::vector<TeammateLeg> legs = legs_ahead(j, chain, tj.base, tj.error, drives_in_s, 1);
     MovingBody body = follow_legs(legs, cycle_s(i));
     const Eigen::Vector2d p = tj.true_mean();
     const BodyPose here{p.x(), p.y(), tj.base.theta_rad + tj.error.mean(2)};
