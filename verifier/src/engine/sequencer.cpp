@@ -597,55 +597,63 @@ class Sequencer {
         }
         continue;
       }
-      if (entering_ != kNone && j > entering_) {
-        // Not entered yet: robots enter their first state in file order at
-        // launch, so robot i is analysed before j's first leg is. That leg
-        // and the one after are predicted ahead from where j stands (walls
-        // only), as a driving teammate's next leg is. Left out, a teammate
-        // that parks by i's goal on its first legs was not seen: generated
-        // gen_5115's robot2 parks 0.5 m from robot1's first goal and waits,
-        // robot1 is pinned short of it in every run, and verify had robot1
-        // there at 85 s.
-        StillChain now;
-        now.seconds = 0.0;
-        now.leg = tj.state;
-        const std::vector<TeammateLeg> legs = legs_ahead(j, now, tj.base, tj.error, 0.0, 2);
-        if (legs.empty()) continue;
-        MovingBody body = follow_legs(legs, cycle_s(i));
-        if (passes_near(body, from.x(), from.y(), go->goal.x_m, go->goal.y_m, reach)) bodies->add(std::move(body));
-        continue;
-      }
-      if (tj.analysis.path.empty()) continue;
-      std::vector<TeammateLeg> legs(1);
-      TeammateLeg& leg = legs[0];
-      leg.path = &tj.analysis.path;
-      leg.start = tj.base;
-      leg.end = tj.analysis.end;
-      leg.error_start = tj.error.mean;
-      leg.error_end = tj.analysis.error.mean;
-      leg.entered_s = -std::max(0.0, b.clock.mean() - tj.entry_clock.mean());
-      // The leg's own exit in this branch (the branch was split by which
-      // exit fires, so there is at most one pending self-timed exit) and
-      // where it leads. A Notified exit may take it out earlier: not followed.
-      StillChain after;
-      for (const Pending& p : tj.pending) {
-        const mission::Transition& tr = spec.transitions[p.transition];
-        if (std::holds_alternative<mission::NotifiedParams>(tr.trigger)) continue;
-        leg.ends_in_s = std::max(0.0, p.residual.mean());
-        after = still_after(j, tr.to);
-        leg.still_for_s = after.seconds;
-        break;
-      }
-      if (std::isfinite(leg.ends_in_s) && after.leg) {
-        for (TeammateLeg& ahead : legs_ahead(j, after, tj.analysis.end, tj.analysis.error, leg.ends_in_s + leg.still_for_s, 1)) {
-          legs.push_back(ahead);
-        }
-      }
+      const std::vector<TeammateLeg> legs = driving_legs(b, j);
+      if (legs.empty()) continue;
       MovingBody body = follow_legs(legs, cycle_s(i));
       if (passes_near(body, from.x(), from.y(), go->goal.x_m, go->goal.y_m, reach)) bodies->add(std::move(body));
     }
     if (bodies->empty()) return nullptr;
     return bodies;
+  }
+
+  /// Teammate j, driving a GoToGuarded leg (or about to: not entered yet),
+  /// as the legs moving_teammates follows: the leg it drives now and the one
+  /// after, times from the analysed robot's entry. Empty when nothing is
+  /// known of its leg.
+  std::vector<TeammateLeg> driving_legs(const BranchState& b, std::size_t j) {
+    const Track& tj = b.robots[j];
+    const mission::RobotSpec& spec = mission_.robots[j];
+    if (entering_ != kNone && j > entering_) {
+      // Not entered yet: robots enter their first state in file order at
+      // launch, so the analysed robot comes before j's first leg is
+      // analysed. That leg and the one after are predicted ahead from where
+      // j stands (walls only), as a driving teammate's next leg is. Left
+      // out, a teammate that parks by another's goal on its first legs was
+      // not seen: generated gen_5115's robot2 parks 0.5 m from robot1's
+      // first goal and waits, robot1 times out short of it in 992 of 1,000
+      // runs, and verify had robot1 there at 85 s.
+      StillChain now;
+      now.seconds = 0.0;
+      now.leg = tj.state;
+      return legs_ahead(j, now, tj.base, tj.error, 0.0, 2);
+    }
+    if (tj.analysis.path.empty()) return {};
+    std::vector<TeammateLeg> legs(1);
+    TeammateLeg& leg = legs[0];
+    leg.path = &tj.analysis.path;
+    leg.start = tj.base;
+    leg.end = tj.analysis.end;
+    leg.error_start = tj.error.mean;
+    leg.error_end = tj.analysis.error.mean;
+    leg.entered_s = -std::max(0.0, b.clock.mean() - tj.entry_clock.mean());
+    // The leg's own exit in this branch (the branch was split by which exit
+    // fires, so there is at most one pending self-timed exit) and where it
+    // leads. A Notified exit may take it out earlier: not followed.
+    StillChain after;
+    for (const Pending& p : tj.pending) {
+      const mission::Transition& tr = spec.transitions[p.transition];
+      if (std::holds_alternative<mission::NotifiedParams>(tr.trigger)) continue;
+      leg.ends_in_s = std::max(0.0, p.residual.mean());
+      after = still_after(j, tr.to);
+      leg.still_for_s = after.seconds;
+      break;
+    }
+    if (std::isfinite(leg.ends_in_s) && after.leg) {
+      const std::vector<TeammateLeg> ahead =
+          legs_ahead(j, after, tj.analysis.end, tj.analysis.error, leg.ends_in_s + leg.still_for_s, 1);
+      legs.insert(legs.end(), ahead.begin(), ahead.end());
+    }
+    return legs;
   }
 
   /// What robot j does from entering `state` until it drives again.
