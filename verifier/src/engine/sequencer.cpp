@@ -11,7 +11,9 @@
 #include <string>
 #include <utility>
 #include <variant>
+#include <vector>
 
+#include "engine/error_state.hpp"
 #include "engine/interruption.hpp"
 #include "engine/moving_bodies.hpp"
 #include "engine/race.hpp"
@@ -144,6 +146,29 @@ Mixture1 remaining_after(const Mixture1& x, const Mixture1& y, std::size_t k, Hi
 using Lineage = std::uint64_t;
 Lineage lineage_of(std::size_t robot) { return robot < 64 ? (Lineage{1} << robot) : ~Lineage{0}; }
 bool independent(Lineage a, Lineage b) { return (a & b) == 0; }
+
+/// A Spin's odometric turn applied to a pose predicted ahead (legs_ahead):
+/// the heading turns by `turn_rad` and the error grows as the wheels make it
+/// (rot_scale, the turn's own forward motion, the rotation noise), in steps of
+/// at most a degree so a turn's forward motion follows the heading round.
+/// Before, only the heading turned: generated gen_6081's robot5 spins 360
+/// degrees by robot1's goal on wheels that turn it 11 degrees short, and its
+/// predicted next leg stood 0.6 m nearer that goal than its real one, holding
+/// robot1 off its AtGoal circle on 9 % of its paths (joint error 0.966 against
+/// 1,000 runs; 0.039 now).
+void spin_in_place(BaseState& base, ErrorState& error, double turn_rad, const MotionError& motion) {
+  constexpr double kMaxStepRad = 3.14159265358979323846 / 180.0;
+  const auto steps = static_cast<std::size_t>(std::ceil(std::abs(turn_rad) / kMaxStepRad));
+  if (steps == 0) return;
+  const double step = turn_rad / static_cast<double>(steps);
+  for (std::size_t k = 0; k < steps; ++k) {
+    CycleIncrement inc;
+    inc.dtheta_rad = step;
+    inc.mid_theta_rad = base.theta_rad + step / 2.0;
+    propagate(error, inc, motion);
+    base.theta_rad += step;
+  }
+}
 
 struct Pending {
   std::size_t transition = 0;
@@ -665,7 +690,7 @@ class Sequencer {
     /// Spin's turn).
     double seconds = std::numeric_limits<double>::infinity();
     std::optional<std::size_t> leg;  ///< the leg it then drives (when seconds is finite)
-    double turn_rad = 0.0;           ///< the Spins' turns on the way (odometric, signed)
+    std::vector<double> turns_rad;   ///< the Spins' turns on the way, in order (odometric, signed)
   };
   StillChain still_after(std::size_t j, std::size_t state) const {
     constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
@@ -693,7 +718,7 @@ class Sequencer {
           if (!(rate > 0.0)) break;
           const double angle = (h->angle_deg - h->offset_deg) * kDegToRad;
           total += angle / rate + rate / kin.rot_accel_radps2;
-          chain.turn_rad += spin->rate_deg_s < 0.0 ? -angle : angle;
+          chain.turns_rad.push_back(spin->rate_deg_s < 0.0 ? -angle : angle);
         } else {
           continue;
         }
@@ -723,8 +748,8 @@ class Sequencer {
     std::vector<TeammateLeg> legs;
     while (legs.size() < count && chain.leg) {
       BaseState start = from;
-      start.theta_rad += chain.turn_rad;
       start.trans_mps = start.rot_radps = 0.0;  // the still states in between brake
+      for (const double turn : chain.turns_rad) spin_in_place(start, error, turn, robot_models_[j]->motion);
       const std::shared_ptr<const StateAnalysis> next = look_ahead(j, *chain.leg, start, error);
       if (!next || next->path.empty()) break;
       TeammateLeg ahead;
