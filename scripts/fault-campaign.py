@@ -17,12 +17,13 @@ a robot during its gate, a NO-GO robot, a late robot. Each robot talks LCM on it
 own multicast port; the proxy (this script) forwards between the two with the
 fault's loss and delay, so the robots hear each other only through it.
 
-Usage: scripts/fault-campaign.py [--bin build/release/bin] [--seed N] [--faults 50]
+Usage: scripts/fault-campaign.py [--bin build/release/bin] [--seed N] [--faults 50] [--jobs 2]
 The seed and, for each failed fault, its logs are printed. Exit 0 when every
 invariant held, 1 otherwise. Python 3 standard library only.
 """
 
 import argparse
+import concurrent.futures
 import hashlib
 import os
 import random
@@ -129,23 +130,49 @@ class LossProxy:
             s.close()
 
 
+# Ports handed out to trials so far: with --jobs, trials run side by side, and a
+# port one trial picked but its simulator has not bound yet looks free to the next.
+_PORTS_LOCK = threading.Lock()
+_PORTS_TAKEN = set()
+
+
 def free_port_pair():
-    for _ in range(100):
-        s = socket.socket()
-        s.bind(("127.0.0.1", 0))
-        p = s.getsockname()[1]
-        s.close()
-        if p >= 65000:
-            continue
-        t = socket.socket()
-        try:
-            t.bind(("127.0.0.1", p + 1))
-            return p
-        except OSError:
-            continue
-        finally:
-            t.close()
+    with _PORTS_LOCK:
+        for _ in range(200):
+            p = _free_port_pair_once()
+            if p is not None and p not in _PORTS_TAKEN and p + 1 not in _PORTS_TAKEN:
+                _PORTS_TAKEN.update((p, p + 1))
+                return p
     raise RuntimeError("no free TCP port pair")
+
+
+def lcm_port_pair(base):
+    """The trial's pair of LCM ports from its drawn base, moved on past pairs
+    another trial holds (the draw stays the seed's, whatever --jobs is)."""
+    with _PORTS_LOCK:
+        while base in _PORTS_TAKEN or base + 1 in _PORTS_TAKEN:
+            base = 20000 + (base - 20000 + 2) % 40000
+        _PORTS_TAKEN.update((base, base + 1))
+        return base
+
+
+def _free_port_pair_once():
+    """A TCP port the kernel calls free whose next one is free too (the
+    simulator serves robot1 on it and robot2 on the next), or None."""
+    s = socket.socket()
+    s.bind(("127.0.0.1", 0))
+    p = s.getsockname()[1]
+    s.close()
+    if p >= 65000:
+        return None
+    t = socket.socket()
+    try:
+        t.bind(("127.0.0.1", p + 1))
+        return p
+    except OSError:
+        return None
+    finally:
+        t.close()
 
 
 def truth_rows(path, robot):
@@ -239,7 +266,7 @@ class Trial:
     def run(self):
         rng = self.rng
         self.port = free_port_pair()
-        base = 20000 + rng.randrange(20000) * 2
+        base = lcm_port_pair(20000 + rng.randrange(20000) * 2)
         self.lcm1, self.lcm2 = base, base + 1
         self.truth = os.path.join(self.dir, "truth.csv")
         proxy = LossProxy(self.lcm1, self.lcm2, random.Random(rng.random()))
@@ -393,11 +420,14 @@ def main():
     ap.add_argument("--seed", type=int, default=None, help="default: from the clock (printed)")
     ap.add_argument("--faults", type=int, default=50)
     ap.add_argument("--keep", action="store_true", help="keep the logs of passing faults too")
+    ap.add_argument("--jobs", type=int, default=1,
+                    help="trials run side by side (each on its own ports; the faults and their draws are the "
+                         "seed's whatever this is); results are printed in fault order")
     args = ap.parse_args()
     seed = args.seed if args.seed is not None else int(time.time()) % 1000000
     rng = random.Random(seed)
-    print("fault-campaign: seed=%d faults=%d speedup=%g (rerun: %s --seed %d --faults %d)" %
-          (seed, args.faults, SPEEDUP, sys.argv[0], seed, args.faults), flush=True)
+    print("fault-campaign: seed=%d faults=%d jobs=%d speedup=%g (rerun: %s --seed %d --faults %d --jobs %d)" %
+          (seed, args.faults, args.jobs, SPEEDUP, sys.argv[0], seed, args.faults, args.jobs), flush=True)
     tmp = tempfile.mkdtemp(prefix="p3at-fault-campaign-")
     keyfile = os.path.join(tmp, "team.key")
     subprocess.run([os.path.join(args.bin, "p3at_team_key"), keyfile], check=True, stdout=subprocess.DEVNULL)
@@ -411,19 +441,28 @@ def main():
     start = time.monotonic()
     failed = 0
     counts = {}
+    # Every trial's fault and random stream are drawn first, in order, so a
+    # seed names the same campaign at any --jobs.
+    trials = []
     for i in range(args.faults):
         fault = FAULTS[i % len(FAULTS)] if i < len(FAULTS) else rng.choice(FAULTS)
         counts[fault] = counts.get(fault, 0) + 1
-        trial = Trial(args, i, fault, random.Random(rng.random()), keyfile, mission, tmp)
+        trials.append(Trial(args, i, fault, random.Random(rng.random()), keyfile, mission, tmp))
+
+    def run_one(trial):
         try:
             trial.run()
         except Exception as e:  # the driver's own trouble is a failure too, never a pass
             trial.failures.append("driver error: %r" % (e,))
-        if trial.failures:
-            failed += 1
-            print(trial.report(), flush=True)
-        else:
-            print("ok   fault %d: %s (%s)" % (i, fault, "; ".join(trial.notes)), flush=True)
+        return trial
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+        for trial in pool.map(run_one, trials):  # in fault order, each as soon as it and those before are done
+            if trial.failures:
+                failed += 1
+                print(trial.report(), flush=True)
+            else:
+                print("ok   fault %d: %s (%s)" % (trial.index, trial.fault, "; ".join(trial.notes)), flush=True)
     took = time.monotonic() - start
     print("fault-campaign: seed=%d %d faults (%s) in %.0f s: %d failed" %
           (seed, args.faults, " ".join("%s=%d" % kv for kv in sorted(counts.items())), took, failed), flush=True)

@@ -28,8 +28,8 @@ ctest --test-dir build/release -L 'unit|sitl|accuracy' --output-on-failure -j "$
 step "sharded validation on a local Slurm (about 40 s)"
 bash scripts/test-slurm.sh build/release/bin
 
-step "fault campaign: 50 faults on real processes (about 3.5 min; the seed is printed)"
-python3 scripts/fault-campaign.py --bin build/release/bin --faults 50
+step "fault campaign: 50 faults on real processes, $jobs at a time (about 2 min; the seed is printed)"
+python3 scripts/fault-campaign.py --bin build/release/bin --faults 50 --jobs "$jobs"
 
 step "sanitizer build (ASan + UBSan)"
 bash scripts/build.sh asan
