@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <vector>
@@ -63,6 +64,22 @@ TEST_SUITE("normal helpers") {
     CHECK(normal_cdf(-30.0) == doctest::Approx(4.906713927148187e-198).epsilon(1e-12));
     CHECK(normal_pdf(0.0) == doctest::Approx(1.0 / std::sqrt(2.0 * std::numbers::pi)).epsilon(1e-15));
     CHECK(normal_pdf(2.0) == doctest::Approx(0.05399096651318806).epsilon(1e-14));
+  }
+
+  TEST_CASE("normal_quantile inverts normal_cdf, in both tails, and is infinite at 0 and 1") {
+    using p3at::verifier::normal_quantile;
+    CHECK(normal_quantile(0.5) == doctest::Approx(0.0).epsilon(1e-12));
+    CHECK(normal_quantile(0.975) == doctest::Approx(1.959963984540054).epsilon(1e-12));
+    CHECK(normal_quantile(0.15865525393145705) == doctest::Approx(-1.0).epsilon(1e-12));
+    for (const double z : {-30.0, -10.0, -3.0, -0.3, 0.01, 1.0, 4.0}) {
+      INFO("z = " << z);
+      CHECK(normal_quantile(normal_cdf(z)) == doctest::Approx(z).epsilon(1e-9));
+    }
+    CHECK(std::isinf(normal_quantile(0.0)));
+    CHECK(normal_quantile(0.0) < 0.0);
+    CHECK(std::isinf(normal_quantile(1.0)));
+    CHECK(normal_quantile(1.0) > 0.0);
+    CHECK(std::isnan(normal_quantile(std::numeric_limits<double>::quiet_NaN())));
   }
 }
 

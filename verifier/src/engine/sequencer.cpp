@@ -205,11 +205,15 @@ struct Track {
   Eigen::Matrix2d spread_points_within = Eigen::Matrix2d::Zero();
   Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
   std::vector<Eigen::Vector2d> spread_points;  ///< the points `spread` is the covariance of (may be empty)
+  /// How much later than their mean each point's paths fired (seconds, the
+  /// same order; StateAnalysis::end_delays); empty when not known.
+  std::vector<double> spread_delays;
   /// The last leg's spread_points once each path has braked to rest on its
   /// own, and what they average away (StateAnalysis::rest_offsets): they
   /// replace spread_points on entering a state that stops the robot.
   std::vector<Eigen::Vector2d> rest_points;
   Eigen::Matrix2d rest_points_within = Eigen::Matrix2d::Zero();
+  std::vector<double> rest_delays;
   StateAnalysis analysis;         ///< of the current state
   /// Where the previous state left the robot (equally likely points around
   /// `base`; state_analysis.hpp's StartPoint): the current state's paths
@@ -412,8 +416,10 @@ class Sequencer {
       track.base.y_m += shift.y();
       track.spread_points = std::move(track.rest_points);
       track.spread_points_within = track.rest_points_within;
+      track.spread_delays = std::move(track.rest_delays);
     }
     track.rest_points.clear();
+    track.rest_delays.clear();
     if (record_entries_) entry_errors_.emplace(std::make_pair(i, state), track.error);
 
     // Notify: the message goes out on entry.
@@ -1134,8 +1140,10 @@ class Sequencer {
       t.spread = t.analysis.end_spread;
       t.spread_points = t.analysis.end_offsets;
       t.spread_points_within = t.analysis.end_offsets_within;
+      t.spread_delays = t.analysis.end_delays;
       t.rest_points = t.analysis.rest_offsets;
       t.rest_points_within = t.analysis.rest_offsets_within;
+      t.rest_delays = t.analysis.rest_delays;
       t.extra_cov.setZero();
     }
     t.timeline.note(b.clock.mean(), t.true_position(), kSeparationWindowS);
@@ -1200,6 +1208,7 @@ class Sequencer {
       ti.error = bin.error;
       ti.spread = bin.spread;
       ti.spread_points = bin.offsets;
+      ti.spread_delays.clear();  // where a message stopped it, not when its paths arrived
       ti.extra_cov = bin.within;
       ti.timeline.note(child.clock.mean(), ti.true_position(), kSeparationWindowS);
       enter(std::move(child), i, to, out);
@@ -1236,13 +1245,15 @@ class Sequencer {
         const std::vector<Eigen::Vector2d> ends =
             t.spread_points.empty() ? std::vector<Eigen::Vector2d>{Eigen::Vector2d::Zero()} : t.spread_points;
         const ErrorMixture mix = kept.empty() ? ErrorMixture{ErrorComponent{}} : kept;
-        for (const Eigen::Vector2d& offset : ends) {
+        const std::vector<double> scores = time_scores(t, ends.size(), r.time_score_correlation);
+        for (std::size_t e = 0; e < ends.size(); ++e) {
           for (const ErrorComponent& c : mix) {
             Gaussian2 g;
-            g.mean = t.true_mean() + offset + c.delta.head<2>();
+            g.mean = t.true_mean() + ends[e] + c.delta.head<2>();
             g.cov = common + c.cov.topLeftCorner<2, 2>();
             r.final_components.push_back(g);
             r.final_weights.push_back(c.weight / static_cast<double>(ends.size()));
+            if (!scores.empty()) r.final_time_scores.push_back(scores[e]);
           }
         }
       }
@@ -1252,6 +1263,26 @@ class Sequencer {
       out.robots.push_back(std::move(r));
     }
     outcome_.branches.push_back(std::move(out));
+  }
+
+  /// The last leg's end points' delays standardised (equal weights: mean 0,
+  /// variance 1), and `rho` set to their correlation with the robot's finish
+  /// time: their spread's share of the finish time's (the rest of it, the
+  /// earlier states' and the paths' own widths, is independent of which
+  /// point). Empty, and rho 0, when the points' delays are not known or do
+  /// not vary. Capped at 0.95: the paths are 8 points standing for a circle.
+  static std::vector<double> time_scores(const Track& t, std::size_t ends, double& rho) {
+    rho = 0.0;
+    if (!t.final || t.spread_points.empty() || t.spread_delays.size() != ends) return {};
+    double mean = 0.0, var = 0.0;
+    for (const double d : t.spread_delays) mean += d / static_cast<double>(ends);
+    for (const double d : t.spread_delays) var += (d - mean) * (d - mean) / static_cast<double>(ends);
+    const double finish_var = t.finish.variance();
+    if (!(var > 1e-12) || !(finish_var > 0.0) || !std::isfinite(finish_var)) return {};
+    rho = std::min(0.95, std::sqrt(var / finish_var));
+    std::vector<double> z;
+    for (const double d : t.spread_delays) z.push_back((d - mean) / std::sqrt(var));
+    return z;
   }
 
   /// Branches in the same discrete configuration become one (moment-matched);
@@ -1357,6 +1388,15 @@ class Sequencer {
       };
       blend_points(ta.spread_points, tb.spread_points);
       blend_points(ta.rest_points, tb.rest_points);
+      const auto blend_delays = [&](std::vector<double>& da, const std::vector<double>& db) {
+        if (da.size() != db.size()) {
+          da.clear();
+          return;
+        }
+        for (std::size_t j = 0; j < da.size(); ++j) da[j] = (wa * da[j] + wb * db[j]) / w;
+      };
+      blend_delays(ta.spread_delays, tb.spread_delays);
+      blend_delays(ta.rest_delays, tb.rest_delays);
       ta.rest_points_within = (wa * ta.rest_points_within + wb * tb.rest_points_within) / w;
     }
     for (std::size_t m = 0; m < a.delivery.size(); ++m) {

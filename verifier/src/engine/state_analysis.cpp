@@ -431,6 +431,15 @@ Eigen::Vector2d run_out(BaseState q, const Kinematics& k) {
   return {q.x_m - x0, q.y_m - y0};
 }
 
+/// Equally likely points' durations (cycles) as seconds from their mean.
+std::vector<double> centred_delays(const std::vector<double>& cycles, double cycle_s) {
+  double mean = 0.0;
+  for (const double c : cycles) mean += c / static_cast<double>(cycles.size());
+  std::vector<double> out;
+  for (const double c : cycles) out.push_back((c - mean) * cycle_s);
+  return out;
+}
+
 /// Where finished paths come to rest, each braking on its own from the speed
 /// and heading it fired at: `centre` is their weighted mean (true positions:
 /// odometric end plus run-out plus the error's deviation from the paths'
@@ -439,6 +448,9 @@ Eigen::Vector2d run_out(BaseState q, const Kinematics& k) {
 /// slabs), `within` the spread the points average away.
 struct RestPoints {
   std::vector<Eigen::Vector2d> offsets;
+  /// Each offset's path's duration in cycles (uncentred), when one per
+  /// direction; empty for slabs (their delays are not kept: see end_delays).
+  std::vector<double> delays;
   Eigen::Matrix2d within = Eigen::Matrix2d::Zero();
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
 };
@@ -462,6 +474,7 @@ RestPoints rest_points(const std::vector<FinishedPath>& done, bool one_per_direc
   }
   if (one_per_direction) {
     for (const Eigen::Vector2d& x : at) out.offsets.push_back(x - out.centre);
+    for (const FinishedPath& p : done) out.delays.push_back(static_cast<double>(p.walker.cycles));
   } else {
     out.offsets = equal_weight_ends(done, goal, out.centre, error_mean, directions, moved);
   }
@@ -773,16 +786,23 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
     // deviation from the mean error: the two are correlated, so they are
     // added per path, not combined as independent spreads).
     const Eigen::Vector2d error_mean = a.error.mean.head<2>();
+    std::vector<double> end_cycles;
     if (ends->redraws == 0 && entries.size() == 1) {
       // One end point per direction, in direction order (equal weights).
       for (const FinishedPath& p : ends->finished) {
         a.end_offsets.push_back(Eigen::Vector2d(p.walker.q.x_m, p.walker.q.y_m) + p.walker.error.mean.head<2>() - error_mean -
                                 mean_xy);
+        end_cycles.push_back(static_cast<double>(p.walker.cycles));
       }
     } else {
       a.end_offsets = equal_weight_ends(ends->finished, Eigen::Vector2d(go->goal.x_m, go->goal.y_m), mean_xy, error_mean,
                                         directions);
     }
+    // Which path fired when, for the final position's time scores: only where
+    // each point is one path (a NOISE held for the whole leg). A redrawn
+    // NOISE's slabs group paths by bearing, whose mean delays were tried and
+    // not kept (docs/verifier.md, "Time and position together").
+    a.end_delays = centred_delays(end_cycles, ctx.model->kinematics.cycle_s);
     // What the points do not show: the true ends' spread within each slab.
     Eigen::Matrix2d all = Eigen::Matrix2d::Zero(), shown = Eigen::Matrix2d::Zero();
     for (const FinishedPath& p : ends->finished) {
@@ -822,6 +842,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
       const Eigen::Vector2d centre = at_ends.centre - (mean_xy + run_out(a.end, kin));
       for (const Eigen::Vector2d& d : shape.offsets) a.rest_offsets.push_back(d + centre);
       a.rest_offsets_within = shape.within;
+      a.rest_delays = centred_delays(shape.delays, kin.cycle_s);
     }
   }
 

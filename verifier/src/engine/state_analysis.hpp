@@ -79,6 +79,11 @@ struct StateAnalysis {
   /// The true ends' spread that end_offsets do not show (a redrawn NOISE's
   /// many paths are averaged into `directions` slabs).
   Eigen::Matrix2d end_offsets_within = Eigen::Matrix2d::Zero();
+  /// How much later than the points' mean each end_offsets point's paths
+  /// fired (seconds; the same order): a path pushed toward the goal arrives
+  /// early and ends nearer it, so the completion time and the final position
+  /// are correlated through them (RobotOutcome::final_time_scores).
+  std::vector<double> end_delays;
   /// The same paths' true positions once each has braked to rest on its own
   /// (from its speed and heading at the firing), relative to where the mean
   /// end (`end`) comes to rest, and what they average away: filled when an
@@ -86,6 +91,7 @@ struct StateAnalysis {
   /// entering one), empty otherwise.
   std::vector<Eigen::Vector2d> rest_offsets;
   Eigen::Matrix2d rest_offsets_within = Eigen::Matrix2d::Zero();
+  std::vector<double> rest_delays;    ///< end_delays for rest_offsets
   ErrorState error;                   ///< the true pose's error at the end
   /// The paths' own errors at the end (their residuals after the regression
   /// above), kept apart as a mixture (engine/error_mixture.hpp); `error.cov`

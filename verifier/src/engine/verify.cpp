@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "engine/sequencer.hpp"
+#include "engine/time_position.hpp"
 #include "p3at/common/number_format.hpp"
 #include "p3at/verifier/criteria.hpp"
 
@@ -20,16 +21,6 @@ Status check_models(const mission::Mission& mission, const Models& models) {
     }
   }
   return {};
-}
-
-/// P(every robot within rmax of its goal) in one branch (robots independent within a branch).
-double branch_radius(const Branch& b, const mission::Mission& mission, double rmax) {
-  double p = 1.0;
-  for (std::size_t i = 0; i < b.robots.size() && p > 0.0; ++i) {
-    const Eigen::Vector2d goal(mission.robots[i].goal.x_m, mission.robots[i].goal.y_m);
-    p *= final_within(b.robots[i], goal, rmax);
-  }
-  return p;
 }
 
 struct Point {
@@ -134,10 +125,10 @@ Point probabilities(const SystemOutcome& o, const mission::Mission& mission, dou
   Point p;
   for (const Branch& b : o.branches) {
     const double pt = time_cdf(b.completion_time_s, tmax, cycle_s);
-    const double pr = branch_radius(b, mission, rmax);
+    const engine::BranchRadii radii(b, mission, {rmax});
     p.time += b.weight * pt;
-    p.radius += b.weight * pr;
-    p.joint += b.weight * pt * pr;
+    p.radius += b.weight * radii.radius(0);
+    p.joint += b.weight * radii.joint(pt, 0);  // time and position together (engine/time_position.hpp)
   }
   return p;
 }
@@ -310,13 +301,11 @@ Result<VerifyResult> verify_outcome(const mission::Mission& mission, const Model
     const auto unit = [](double q) { return std::clamp(q, 0.0, 1.0); };
     for (const double t : g.tmax) g.p_time.push_back(unit(time_probability(o, t, cycle_s)));
     // Per-branch radius probabilities are shared by every Tmax: compute them once.
-    std::vector<std::vector<double>> radius(o.branches.size());
-    for (std::size_t b = 0; b < o.branches.size(); ++b) {
-      for (const double rm : g.rmax) radius[b].push_back(branch_radius(o.branches[b], mission, rm));
-    }
+    std::vector<engine::BranchRadii> radius;
+    for (const Branch& b : o.branches) radius.emplace_back(b, mission, g.rmax);
     for (std::size_t j = 0; j < g.rmax.size(); ++j) {
       double pr = 0.0;
-      for (std::size_t b = 0; b < o.branches.size(); ++b) pr += o.branches[b].weight * radius[b][j];
+      for (std::size_t b = 0; b < o.branches.size(); ++b) pr += o.branches[b].weight * radius[b].radius(j);
       g.p_radius.push_back(unit(pr));
     }
     for (const double t : g.tmax) {
@@ -324,7 +313,7 @@ Result<VerifyResult> verify_outcome(const mission::Mission& mission, const Model
       std::vector<Region> regions;
       for (std::size_t b = 0; b < o.branches.size(); ++b) {
         const double pt = time_cdf(o.branches[b].completion_time_s, t, cycle_s);
-        for (std::size_t j = 0; j < g.rmax.size(); ++j) row[j] += o.branches[b].weight * pt * radius[b][j];
+        for (std::size_t j = 0; j < g.rmax.size(); ++j) row[j] += o.branches[b].weight * radius[b].joint(pt, j);
       }
       for (double& v : row) v = unit(v);
       for (const double v : row) regions.push_back(classify(v, options));

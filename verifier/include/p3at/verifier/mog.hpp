@@ -110,5 +110,8 @@ double probability_apart(const Gaussian2& x, const Gaussian2& y, double distance
 /// Standard normal CDF and helpers, exposed for tests and for criteria.
 double normal_cdf(double z);
 double normal_pdf(double z);
+/// The z with normal_cdf(z) = p, to about 1e-12 relative in p; -infinity
+/// at p <= 0, +infinity at p >= 1, NaN for NaN.
+double normal_quantile(double p);
 
 }  // namespace p3at::verifier

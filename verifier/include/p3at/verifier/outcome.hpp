@@ -27,6 +27,16 @@ struct RobotOutcome {
   std::vector<Gaussian2> final_components;
   /// The components' weights (summing to 1); empty: equal weights.
   std::vector<double> final_weights;
+  /// Which of the last leg's NOISE paths each final component comes from,
+  /// as a score for when they fired: standardised (mean 0, variance 1 over
+  /// the components) so that a path that arrived late scores high. Empty
+  /// when not known. With time_score_correlation, the finish time given a
+  /// component (engine/time_position.hpp): a path pushed toward its goal
+  /// arrives early and runs out closer to it, so within a branch the time
+  /// and the position are not independent (issue 13 item 7).
+  std::vector<double> final_time_scores;
+  /// The correlation of finish_time_s with the score, in [0, 0.95].
+  double time_score_correlation = 0.0;
   /// Where its odometry says it is at the end (the mean the executive believes).
   Eigen::Vector2d believed_position = Eigen::Vector2d::Zero();
   /// The names of the FSA states it went through, in order (its trace).
