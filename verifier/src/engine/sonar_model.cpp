@@ -19,15 +19,23 @@ double point_segment_distance(double px, double py, const Segment& s) {
   return std::hypot(px - (s.x0 + t * dx), py - (s.y0 + t * dy));
 }
 
-// Distance along the ray (ox, oy) + t (cx, cy) to the segment, or a negative value.
-double ray_hit(double ox, double oy, double cx, double cy, const Segment& s) {
+// Distance along the ray (ox, oy) + t (cx, cy) to the segment when it is
+// below `best`, else a negative value or one at least `best`. The same
+// arithmetic as solving for t and u and testing t >= 0, 0 <= u <= 1, in an
+// order that leaves most segments (behind the sonar, or farther than what it
+// already sees) before the divisions: the result is the same to the bit.
+double ray_hit(double ox, double oy, double cx, double cy, const Segment& s, double best) {
   const double ex = s.x1 - s.x0, ey = s.y1 - s.y0;
   const double denom = cx * ey - cy * ex;
   if (std::abs(denom) < 1e-12) return -1.0;
   const double wx = s.x0 - ox, wy = s.y0 - oy;
-  const double t = (wx * ey - wy * ex) / denom;
+  const double t_num = wx * ey - wy * ex;
+  // t = t_num / denom < 0 exactly when the two have opposite signs and t_num is not 0.
+  if (t_num != 0.0 && std::signbit(t_num) != std::signbit(denom)) return -1.0;
+  const double t = t_num / denom;
+  if (!(t < best)) return t;
   const double u = (wx * cy - wy * cx) / denom;
-  if (t < 0.0 || u < 0.0 || u > 1.0) return -1.0;
+  if (u < 0.0 || u > 1.0) return -1.0;
   return t;
 }
 
@@ -86,7 +94,7 @@ std::array<double, exec::kP3atSonarCount> sonar_ranges(const std::vector<Segment
     const double cy = s * kDirections[i][0] + c * kDirections[i][1];
     double best = max_range_m;
     for (const Segment& seg : segments) {
-      const double t = ray_hit(ox, oy, cx, cy, seg);
+      const double t = ray_hit(ox, oy, cx, cy, seg, best);
       if (t >= 0.0 && t < best) best = t;
     }
     ranges[i] = best;
