@@ -239,6 +239,38 @@ TEST_SUITE("evaluation") {
     CHECK_FALSE(strict->holds);
   }
 
+  TEST_CASE("eq. (4) when robot1's early path ends near: its time and place together, not their product") {
+    // Issue 13 item 7 (engine/time_position.hpp). robot1's last leg had two
+    // equally likely NOISE paths: one fires 5 s early and rests on the
+    // criterion's point, one fires 5 s late and rests 3 m off; the rest of
+    // its finish time is N(200, 2.5^2). Exactly, P(t1 <= 200 and |p - x| < 2)
+    // = 1/2 Phi(5 / 2.5) = 0.489 (only the early path is near); the
+    // independence product says 1/2 x 1/2. At t = 200 the copula is exact.
+    const v::Criterion c = v::parse_criterion(kEq4, "eq4.crit");
+    v::RobotOutcome r1 = robot(200, 6.25 + 25.0, 19.75, 18, 1.0);
+    r1.finish_time_s.components = {{0.5, 195.0, 6.25}, {0.5, 205.0, 6.25}};
+    v::Gaussian2 near, far;
+    near.mean = Eigen::Vector2d(19.75, 18);
+    near.cov = 1e-4 * Eigen::Matrix2d::Identity();
+    far.mean = Eigen::Vector2d(22.75, 18);
+    far.cov = near.cov;
+    r1.final_components = {near, far};
+    r1.final_weights = {0.5, 0.5};
+    r1.final_time_scores = {-1.0, 1.0};
+    r1.time_score_correlation = 5.0 / std::sqrt(6.25 + 25.0);
+    const auto coupled = v::evaluate_criterion(c, two_robots(), one_branch(r1, robot(0, 1, 0, 0, 1)), 0.4);
+    REQUIRE(coupled.ok());
+    CHECK(coupled->probability == doctest::Approx(0.5 * phi(2.0)).epsilon(1e-6));
+    CHECK(coupled->holds);
+    // Without the scores, the product (as before): 0.25, and the 0.4 fails.
+    r1.final_time_scores.clear();
+    r1.time_score_correlation = 0.0;
+    const auto plain = v::evaluate_criterion(c, two_robots(), one_branch(r1, robot(0, 1, 0, 0, 1)), 0.4);
+    REQUIRE(plain.ok());
+    CHECK(plain->probability == doctest::Approx(0.25).epsilon(1e-6));
+    CHECK_FALSE(plain->holds);
+  }
+
   TEST_CASE("eq. (5): ordering and per-robot probability bounds") {
     const v::Criterion c = v::parse_criterion(kEq5, "eq5.crit");
     const auto verdict = v::evaluate_criterion(

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "criteria/events.hpp"
+#include "engine/time_position.hpp"
 #include "p3at/common/number_format.hpp"
 #include "p3at/verifier/criteria.hpp"
 #include "p3at/verifier/mog.hpp"
@@ -360,6 +361,81 @@ class Evaluator {
     return total;
   }
 
+  /// P(every event) in one branch when the events ask about one robot's
+  /// finish time (bounds only) and its distance to one point, and that
+  /// robot's final points carry time scores (engine/time_position.hpp, issue
+  /// 13 item 7): the two together, through the same copula as vipars verify's
+  /// joint; the other events as before. nullopt when that is not the case
+  /// (no scores, an ordering or a second position event on the robot).
+  std::optional<double> coupled_probability(const Branch& b, const std::vector<detail::Event>& events) const {
+    const detail::Event* place = nullptr;
+    std::size_t r = 0;
+    for (const detail::Event& e : events) {
+      if (e.kind != detail::Event::Kind::distance_to_point) continue;
+      const RobotOutcome& ro = robot(b, e.a);
+      if (ro.final_time_scores.empty() || ro.final_time_scores.size() != ro.final_components.size() ||
+          !(ro.time_score_correlation > 0.0)) {
+        continue;
+      }
+      if (place != nullptr) return std::nullopt;  // two candidates: keep the plain product
+      place = &e;
+      r = bound_.at(e.a).robot;
+    }
+    if (place == nullptr) return std::nullopt;
+    const auto on_r = [&](const std::string& name) { return !name.empty() && bound_.at(name).robot == r; };
+    double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+    bool timed = false;
+    std::vector<detail::Event> rest_time, rest_other;
+    for (const detail::Event& e : events) {
+      if (&e == place) continue;
+      if (e.kind == detail::Event::Kind::time_bound && on_r(e.a)) {
+        timed = true;
+        const double bound = e.value - e.offset;
+        if (detail::is_less(e.op)) hi = std::min(hi, bound); else lo = std::max(lo, bound);
+      } else if (on_r(e.a) || on_r(e.b)) {
+        return std::nullopt;  // an ordering or another position of the same robot
+      } else if (is_time(e)) {
+        rest_time.push_back(e);
+      } else {
+        rest_other.push_back(e);
+      }
+    }
+    if (!timed) return std::nullopt;
+    const RobotOutcome& ro = b.robots[r];
+    const double p_hi = std::isfinite(hi) ? ro.finish_time_s.cdf(hi) : 1.0;
+    const double p_lo = std::isfinite(lo) ? ro.finish_time_s.cdf(lo) : 0.0;
+    double coupled = 0.0;
+    if (hi > lo && p_hi > p_lo) {
+      // P(t <= bound | component k) at both ends, each rescaled to average to
+      // P(t <= bound) over the components (as BranchRadii::joint does).
+      const std::size_t n = ro.final_components.size();
+      const auto given = [&](double p_time) {
+        std::vector<double> g(n);
+        double margin = 0.0;
+        for (std::size_t k = 0; k < n; ++k) {
+          g[k] = engine::time_given_score(p_time, ro.time_score_correlation, ro.final_time_scores[k]);
+          margin += component_weight(ro, k) * g[k];
+        }
+        for (double& x : g) x = margin > 0.0 ? std::min(1.0, x * p_time / margin) : p_time;
+        return g;
+      };
+      const std::vector<double> upper = given(p_hi), lower = given(p_lo);
+      const bool less = detail::is_less(place->op);
+      double p_place = 0.0;
+      for (std::size_t k = 0; k < n; ++k) {
+        const double inside = probability_within(ro.final_components[k], Eigen::Vector2d(place->x, place->y), place->value);
+        const double event = less ? inside : 1.0 - inside;
+        p_place += component_weight(ro, k) * event;
+        coupled += component_weight(ro, k) * std::max(0.0, upper[k] - lower[k]) * event;
+      }
+      const double p_time = p_hi - p_lo;
+      coupled = std::clamp(coupled, std::max(0.0, p_time + p_place - 1.0), std::min(p_time, p_place));
+    }
+    double p = coupled * joint_time_probability(b, rest_time);
+    for (const detail::Event& e : rest_other) p *= event_probability(b, e);
+    return p;
+  }
+
   double probability(const std::vector<detail::Event>& events) const {
     double total = 0.0;
     for (const Branch& b : o_.branches) {
@@ -372,9 +448,16 @@ class Evaluator {
       // and t1 < t3 both ask about t1): computed jointly. Events on
       // different robots' times, and position events, are independent
       // within a branch as the model carries them.
-      double p = joint_time_probability(b, events);
-      for (const detail::Event& e : events) {
-        if (!is_time(e)) p *= event_probability(b, e);
+      // A robot's finish time and its final position, when its final
+      // points carry time scores, together (coupled_probability).
+      double p = 0.0;
+      if (const std::optional<double> coupled = coupled_probability(b, events)) {
+        p = *coupled;
+      } else {
+        p = joint_time_probability(b, events);
+        for (const detail::Event& e : events) {
+          if (!is_time(e)) p *= event_probability(b, e);
+        }
       }
       total += b.weight * std::clamp(p, 0.0, 1.0);
     }
