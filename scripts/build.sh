@@ -2,7 +2,7 @@
 # Configures and builds one flavour of the project into build/<flavour>.
 #   scripts/build.sh release [TARGET...]   optimised, -O2, no debug info (default);
 #                                          with targets, only those (and what they link)
-#   scripts/build.sh asan      AddressSanitizer + UndefinedBehaviorSanitizer
+#   scripts/build.sh asan      AddressSanitizer + UndefinedBehaviorSanitizer (clang)
 #   scripts/build.sh fuzz      clang + libFuzzer targets
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,7 +17,11 @@ case "$flavour" in
   # build and tests. The few libraries the tests spend their time in are -O1
   # all the same (p3at_optimise_when_sanitized, cmake/Sanitizers.cmake: about
   # ten times faster there). -g1 (line tables) is enough for ASan's stack traces.
-  asan)    cmake -S . -B build/asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O0 -g1" \
+  # clang, not GCC: the same sanitized tree compiles in about half the CPU time
+  # (66 objects: 93 s against GCC's 177 s; the whole build 8.4 min against 14.5
+  # on 2 cores), and a second compiler's warnings (-Werror) come with it. The
+  # release build stays GCC's.
+  asan)    CXX=clang++ cmake -S . -B build/asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O0 -g1" \
              -DP3AT_SANITIZE=ON -DP3AT_BUILD_BENCH=OFF ;;
   # -O1 with line tables only, as OSS-Fuzz builds fuzzers: a quarter less compile
   # time than -O2 -g on the Eigen-heavy verifier sources, stack traces intact.

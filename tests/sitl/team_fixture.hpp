@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -60,7 +61,7 @@ inline std::string fresh_lcm_url() {
 /// One robot's rows of the simulator's truth CSV
 /// (time_s,robot,true_x_m,true_y_m,...,motion_commands).
 struct TruthRow {
-  double time_s = 0, x_m = NAN, y_m = NAN;
+  double time_s = 0, x_m = std::numeric_limits<double>::quiet_NaN(), y_m = std::numeric_limits<double>::quiet_NaN();
   unsigned long long motion_commands = 0;
 };
 inline std::vector<TruthRow> truth_rows(const std::string& csv, const std::string& robot) {

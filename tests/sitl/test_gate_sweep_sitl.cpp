@@ -152,8 +152,12 @@ TEST_CASE("start times swept across the gate timeout: whenever a robot refused, 
 }
 
 TEST_CASE("a NO-GO teammate, early or late, a wrong key and an absent teammate: refusals, and no motion") {
-  for (const auto& [teammate, offset_s] : std::vector<std::pair<Teammate, double>>{
+  for (const auto& one_case : std::vector<std::pair<Teammate, double>>{
            {Teammate::no_go, 0.3}, {Teammate::no_go, 2.3}, {Teammate::wrong_key, 0.3}, {Teammate::absent, 0.0}}) {
+    // (named copies, not a structured binding: INFO's lambda captures them,
+    // which clang 14 does not allow for bindings)
+    const Teammate teammate = one_case.first;
+    const double offset_s = one_case.second;
     INFO("robot2 " << name_of(teammate) << ", " << offset_s << " s after robot1's gate opened");
     const Outcome o = run_case(teammate, offset_s);
     CHECK(is_refusal(o.robot1));

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -142,10 +143,10 @@ TEST_CASE("grid choice: round steps covering where a curve rises") {
   CHECK(rise.lo == 3);
   CHECK(rise.hi == 6);
   CHECK_FALSE(rise_of_curve(x, {0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5}).found);
-  const Rise sample = rise_of_sample({5, 1, 3, INFINITY, 2, 4});
+  const Rise sample = rise_of_sample({5, 1, 3, std::numeric_limits<double>::infinity(), 2, 4});
   CHECK(sample.found);
   CHECK(sample.lo == 1);
   CHECK(sample.hi == 5);
-  CHECK_FALSE(rise_of_sample({INFINITY}).found);
+  CHECK_FALSE(rise_of_sample({std::numeric_limits<double>::infinity()}).found);
   CHECK(round15(0.1 + 0.2) == 0.3);
 }

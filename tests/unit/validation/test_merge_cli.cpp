@@ -149,13 +149,14 @@ TEST_CASE("merge refuses a damaged part, another campaign, a shard twice and a m
 
 TEST_CASE("--shard and --part misuse is bad input naming the flag") {
   const std::string part = scratch("x.part");
-  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+  for (const auto& [args_text, message] : std::vector<std::pair<std::string, std::string>>{
            {"--shard 1/3", "--shard and --part: expected both or neither"},
            {"--part '" + part + "'", "--shard and --part: expected both or neither"},
            {"--shard 3/3 --part '" + part + "'", "--shard: expected I/N with 0 <= I < N"},
            {"--shard 0/10 --part '" + part + "'", "--shard: 10 shards of 9 runs"},
            {"--shard 0/3 --part '" + part + "' --json", "give --json and --csv to vipars merge"},
            {"--shard 0/3 --part /nonexistent/dir/x.part", "/nonexistent/dir/x.part.tmp: cannot write"}}) {
+    const std::string args = args_text;  // a copy: CAPTURE's lambda cannot capture a binding on clang 14
     CAPTURE(args);
     const Outcome o = vipars(campaign(args));
     CHECK(o.status == 2);

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "engine/interruption.hpp"
@@ -43,7 +44,7 @@ LegTrajectory straight_leg(double speed, std::size_t cycles, std::size_t paths) 
 
 TEST_CASE("truncated moments of a standard normal on (0, inf): the half-normal's") {
   double p = 0.0, mean = 0.0, var = 0.0;
-  truncated_moments(Mixture1::gaussian(0.0, 1.0), 0.0, INFINITY, p, mean, var);
+  truncated_moments(Mixture1::gaussian(0.0, 1.0), 0.0, std::numeric_limits<double>::infinity(), p, mean, var);
   CHECK(p == doctest::Approx(0.5).epsilon(1e-9));
   CHECK(mean == doctest::Approx(std::sqrt(2.0 / kPi)).epsilon(1e-9));
   CHECK(var == doctest::Approx(1.0 - 2.0 / kPi).epsilon(1e-9));

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <string_view>
@@ -464,7 +465,7 @@ TEST_SUITE("writing") {
   }
   TEST_CASE("a value that is not finite cannot be written") {
     Models m = parse(kMinimal);
-    m.robots[0].motion.trans_scale = NAN;
+    m.robots[0].motion.trans_scale = std::numeric_limits<double>::quiet_NaN();
     CHECK_THROWS_AS(p3at::verifier::write_models(m), std::invalid_argument);
   }
   TEST_CASE("the example's models round-trip") {

@@ -441,7 +441,7 @@ TEST_SUITE("from_weighted_points") {
   TEST_CASE("bad input") {
     CHECK_THROWS_AS(p3at::verifier::from_weighted_points({1.0}, {1.0, 2.0}, 2), std::invalid_argument);
     CHECK_THROWS_AS(p3at::verifier::from_weighted_points({1.0}, {-1.0}, 2), std::invalid_argument);
-    CHECK_THROWS_AS(p3at::verifier::from_weighted_points({NAN}, {1.0}, 2), std::invalid_argument);
+    CHECK_THROWS_AS(p3at::verifier::from_weighted_points({std::numeric_limits<double>::quiet_NaN()}, {1.0}, 2), std::invalid_argument);
     CHECK(p3at::verifier::from_weighted_points({}, {}, 2).components.empty());
     CHECK(p3at::verifier::from_weighted_points({1.0}, {0.0}, 2).components.empty());
   }
@@ -499,7 +499,7 @@ TEST_SUITE("fit_em") {
     CHECK(two.components[0].mean == doctest::Approx(0.0).scale(1.0));
     CHECK(two.components[1].mean == doctest::Approx(10.0));
     CHECK(two.components[0].var > 0.0);
-    CHECK_THROWS_AS(p3at::verifier::fit_em({1.0, INFINITY}, 2), std::invalid_argument);
+    CHECK_THROWS_AS(p3at::verifier::fit_em({1.0, std::numeric_limits<double>::infinity()}, 2), std::invalid_argument);
   }
 }
 
