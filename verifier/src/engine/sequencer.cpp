@@ -1378,25 +1378,19 @@ class Sequencer {
         ta.start_points = equal_weight_points(points, weights, keys, kStartPointsCarried);
       }
       // Point j of both is the end of the same NOISE direction: blend them
-      // pointwise; lists that do not match fall back to the Gaussian.
-      const auto blend_points = [&](std::vector<Eigen::Vector2d>& pa, const std::vector<Eigen::Vector2d>& pb) {
+      // (and their delays) pointwise; lists that do not match fall back to
+      // the Gaussian (and to no delays).
+      const auto blend_pointwise = [&](auto& pa, const auto& pb) {
         if (pa.size() != pb.size()) {
           pa.clear();
           return;
         }
         for (std::size_t j = 0; j < pa.size(); ++j) pa[j] = (wa * pa[j] + wb * pb[j]) / w;
       };
-      blend_points(ta.spread_points, tb.spread_points);
-      blend_points(ta.rest_points, tb.rest_points);
-      const auto blend_delays = [&](std::vector<double>& da, const std::vector<double>& db) {
-        if (da.size() != db.size()) {
-          da.clear();
-          return;
-        }
-        for (std::size_t j = 0; j < da.size(); ++j) da[j] = (wa * da[j] + wb * db[j]) / w;
-      };
-      blend_delays(ta.spread_delays, tb.spread_delays);
-      blend_delays(ta.rest_delays, tb.rest_delays);
+      blend_pointwise(ta.spread_points, tb.spread_points);
+      blend_pointwise(ta.rest_points, tb.rest_points);
+      blend_pointwise(ta.spread_delays, tb.spread_delays);
+      blend_pointwise(ta.rest_delays, tb.rest_delays);
       ta.rest_points_within = (wa * ta.rest_points_within + wb * tb.rest_points_within) / w;
     }
     for (std::size_t m = 0; m < a.delivery.size(); ++m) {
