@@ -7,7 +7,6 @@
 namespace p3at::verifier::engine {
 namespace {
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 constexpr double kHalfLengthM = kBodyHalfLengthM;
 constexpr double kHalfWidthM = kBodyHalfWidthM;
 
@@ -75,23 +74,18 @@ std::array<Segment, 4> body_segments(double x_m, double y_m, double theta_rad) {
 
 std::array<double, exec::kP3atSonarCount> sonar_ranges(const std::vector<Segment>& segments, double x_m, double y_m,
                                                        double theta_rad, double max_range_m) {
-  // The ring's directions in the robot frame, computed once: each call then
-  // needs one sine and cosine, not sixteen (this is the verifier's hot loop).
-  static const std::array<std::array<double, 2>, exec::kP3atSonarCount> kDirections = [] {
-    std::array<std::array<double, 2>, exec::kP3atSonarCount> d{};
-    for (std::size_t i = 0; i < exec::kP3atSonarCount; ++i) {
-      d[i] = {std::cos(exec::kP3atSonars[i].heading_deg * kDegToRad), std::sin(exec::kP3atSonars[i].heading_deg * kDegToRad)};
-    }
-    return d;
-  }();
+  // The ring's directions in the robot frame, computed once (the executive's
+  // table): each call then needs one sine and cosine, not sixteen (this is
+  // the verifier's hot loop).
+  const auto& directions = exec::sonar_facings();
   std::array<double, exec::kP3atSonarCount> ranges{};
   const double c = std::cos(theta_rad), s = std::sin(theta_rad);
   for (std::size_t i = 0; i < exec::kP3atSonarCount; ++i) {
     const exec::SonarPose& sonar = exec::kP3atSonars[i];
     const double ox = x_m + c * sonar.x_m - s * sonar.y_m;
     const double oy = y_m + s * sonar.x_m + c * sonar.y_m;
-    const double cx = c * kDirections[i][0] - s * kDirections[i][1];
-    const double cy = s * kDirections[i][0] + c * kDirections[i][1];
+    const double cx = c * directions[i][0] - s * directions[i][1];
+    const double cy = s * directions[i][0] + c * directions[i][1];
     double best = max_range_m;
     for (const Segment& seg : segments) {
       const double t = ray_hit(ox, oy, cx, cy, seg, best);
