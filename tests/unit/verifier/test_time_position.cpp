@@ -68,18 +68,18 @@ TEST_CASE("a branch whose early path ends near: the joint follows the paths, not
   for (double t = 8.0; t <= 12.0; t += 0.05) {
     const double p_time = b.completion_time_s.cdf(t);
     const double exact = 0.5 * v::normal_cdf((t - m + d) / s);
-    const double joint = radii.joint(p_time, 0);
+    const double joint = radii.joints(p_time)[0];
     worst = std::max(worst, std::abs(joint - exact));
     worst_independent = std::max(worst_independent, std::abs(p_time * 0.5 - exact));
     // Rmax past every path: the joint is the time curve itself.
-    CHECK(radii.joint(p_time, 1) == doctest::Approx(p_time).epsilon(1e-12));
+    CHECK(radii.joints(p_time)[1] == doctest::Approx(p_time).epsilon(1e-12));
     // Never beyond what the two curves allow.
     CHECK(joint <= std::min(p_time, 0.5) + 1e-12);
     CHECK(joint >= std::max(0.0, p_time + 0.5 - 1.0) - 1e-12);
   }
   INFO("worst |joint - exact| " << worst << ", the independence product's " << worst_independent);
   // At T = m the copula is exact (P(t <= m) = 1/2: q = 0, and Phi(rho / sqrt(1 - rho^2)) = Phi(d / s)).
-  CHECK(radii.joint(b.completion_time_s.cdf(m), 0) == doctest::Approx(0.5 * v::normal_cdf(d / s)).epsilon(1e-9));
+  CHECK(radii.joints(b.completion_time_s.cdf(m))[0] == doctest::Approx(0.5 * v::normal_cdf(d / s)).epsilon(1e-9));
   CHECK(worst_independent > 0.2);
   CHECK(worst < 0.03);
 }
@@ -89,7 +89,7 @@ TEST_CASE("without time scores, or with two robots finishing as the completion, 
   const v::Branch plain = two_paths(10.0, 1.0, 0.5, false);
   const BranchRadii radii(plain, mission, {0.5});
   CHECK_FALSE(v::engine::time_coupled_robot(plain).has_value());
-  CHECK(radii.joint(0.3, 0) == doctest::Approx(0.3 * 0.5).epsilon(1e-12));
+  CHECK(radii.joints(0.3)[0] == doctest::Approx(0.3 * 0.5).epsilon(1e-12));
 
   // Two robots whose finish is the completion: which one's paths the time
   // follows is not known.
@@ -99,7 +99,7 @@ TEST_CASE("without time scores, or with two robots finishing as the completion, 
   both.robots.push_back(mission.robots.front());
   CHECK_FALSE(v::engine::time_coupled_robot(two).has_value());
   const BranchRadii radii2(two, both, {0.5});
-  CHECK(radii2.joint(0.3, 0) == doctest::Approx(0.3 * 0.25).epsilon(1e-12));
+  CHECK(radii2.joints(0.3)[0] == doctest::Approx(0.3 * 0.25).epsilon(1e-12));
 
   // A teammate that finished earlier: the last one is coupled, the other's
   // position stays independent (its factor multiplies).
@@ -112,7 +112,7 @@ TEST_CASE("without time scores, or with two robots finishing as the completion, 
   REQUIRE(v::engine::time_coupled_robot(early) == std::optional<std::size_t>(0));
   const BranchRadii radii3(early, both, {0.5});
   const BranchRadii alone(two_paths(10.0, 1.0, 0.5, true), mission, {0.5});
-  CHECK(radii3.joint(0.5, 0) == doctest::Approx(alone.joint(0.5, 0) * 0.5).epsilon(1e-12));
+  CHECK(radii3.joints(0.5)[0] == doctest::Approx(alone.joints(0.5)[0] * 0.5).epsilon(1e-12));
 }
 
 TEST_CASE("the copula's conditional time: its margin, its ends and its direction") {

@@ -372,11 +372,7 @@ class Evaluator {
     std::size_t r = 0;
     for (const detail::Event& e : events) {
       if (e.kind != detail::Event::Kind::distance_to_point) continue;
-      const RobotOutcome& ro = robot(b, e.a);
-      if (ro.final_time_scores.empty() || ro.final_time_scores.size() != ro.final_components.size() ||
-          !(ro.time_score_correlation > 0.0)) {
-        continue;
-      }
+      if (!engine::has_time_scores(robot(b, e.a))) continue;
       if (place != nullptr) return std::nullopt;  // two candidates: keep the plain product
       place = &e;
       r = bound_.at(e.a).robot;
@@ -406,20 +402,11 @@ class Evaluator {
     const double p_lo = std::isfinite(lo) ? ro.finish_time_s.cdf(lo) : 0.0;
     double coupled = 0.0;
     if (hi > lo && p_hi > p_lo) {
-      // P(t <= bound | component k) at both ends, each rescaled to average to
-      // P(t <= bound) over the components (as BranchRadii::joint does).
+      // P(t <= bound | component k) at both ends of the interval.
       const std::size_t n = ro.final_components.size();
-      const auto given = [&](double p_time) {
-        std::vector<double> g(n);
-        double margin = 0.0;
-        for (std::size_t k = 0; k < n; ++k) {
-          g[k] = engine::time_given_score(p_time, ro.time_score_correlation, ro.final_time_scores[k]);
-          margin += component_weight(ro, k) * g[k];
-        }
-        for (double& x : g) x = margin > 0.0 ? std::min(1.0, x * p_time / margin) : p_time;
-        return g;
-      };
-      const std::vector<double> upper = given(p_hi), lower = given(p_lo);
+      const engine::TimeScores scores = engine::time_scores_of(ro);
+      const std::vector<double> upper = engine::time_given_components(scores, p_hi);
+      const std::vector<double> lower = engine::time_given_components(scores, p_lo);
       const bool less = detail::is_less(place->op);
       double p_place = 0.0;
       for (std::size_t k = 0; k < n; ++k) {

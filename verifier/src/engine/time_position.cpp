@@ -16,6 +16,11 @@ bool same_time(const Mixture1& a, const Mixture1& b) {
 
 }  // namespace
 
+bool has_time_scores(const RobotOutcome& r) {
+  return !r.final_time_scores.empty() && r.final_time_scores.size() == r.final_components.size() &&
+         r.time_score_correlation > 0.0;
+}
+
 std::optional<std::size_t> time_coupled_robot(const Branch& b) {
   std::optional<std::size_t> found;
   std::size_t last = 0;
@@ -23,10 +28,7 @@ std::optional<std::size_t> time_coupled_robot(const Branch& b) {
     const RobotOutcome& r = b.robots[i];
     if (!r.finished || !same_time(r.finish_time_s, b.completion_time_s)) continue;
     ++last;
-    if (!r.final_time_scores.empty() && r.final_time_scores.size() == r.final_components.size() &&
-        r.time_score_correlation > 0.0) {
-      found = i;
-    }
+    if (has_time_scores(r)) found = i;
   }
   // Two robots finishing as the completion: which one's paths the time
   // follows is not known; keep both independent.
@@ -41,21 +43,36 @@ double time_given_score(double p_time, double rho, double z) {
   return normal_cdf((q - rho * z) / std::sqrt(1.0 - rho * rho));
 }
 
+TimeScores time_scores_of(const RobotOutcome& r) {
+  TimeScores s;
+  s.scores = r.final_time_scores;
+  for (std::size_t k = 0; k < r.final_components.size(); ++k) s.weights.push_back(component_weight(r, k));
+  s.rho = r.time_score_correlation;
+  return s;
+}
+
+std::vector<double> time_given_components(const TimeScores& s, double p_time) {
+  const std::size_t n = s.scores.size();
+  std::vector<double> given(n);
+  double margin = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    given[k] = time_given_score(p_time, s.rho, s.scores[k]);
+    margin += s.weights[k] * given[k];
+  }
+  for (double& g : given) g = margin > 0.0 ? std::min(1.0, g * p_time / margin) : p_time;
+  return given;
+}
+
 BranchRadii::BranchRadii(const Branch& b, const mission::Mission& mission, const std::vector<double>& rmax) {
   const std::optional<std::size_t> c = time_coupled_robot(b);
-  coupled_ = c.has_value();
-  if (coupled_) {
-    rho_ = b.robots[*c].time_score_correlation;
-    scores_ = b.robots[*c].final_time_scores;
-    for (std::size_t k = 0; k < scores_.size(); ++k) weights_.push_back(component_weight(b.robots[*c], k));
-  }
+  if (c) coupled_ = time_scores_of(b.robots[*c]);
   for (const double r : rmax) {
     double others = 1.0;
     std::vector<double> parts;
     for (std::size_t i = 0; i < b.robots.size(); ++i) {
       const RobotOutcome& robot = b.robots[i];
       const Eigen::Vector2d goal(mission.robots[i].goal.x_m, mission.robots[i].goal.y_m);
-      if (coupled_ && i == *c) {
+      if (c && i == *c) {
         for (std::size_t k = 0; k < robot.final_components.size(); ++k) {
           parts.push_back(component_weight(robot, k) * probability_within(robot.final_components[k], goal, r));
         }
@@ -74,24 +91,21 @@ BranchRadii::BranchRadii(const Branch& b, const mission::Mission& mission, const
   }
 }
 
-double BranchRadii::joint(double p_time, std::size_t j) const {
-  const double independent = p_time * radius_[j];
-  if (!coupled_ || !(p_time > 0.0) || !(p_time < 1.0)) return independent;
-  // P(t <= T | component k), rescaled so that over the components they
-  // average to P(t <= T) exactly (a handful of points stand for the paths'
-  // circle: the copula's margin over them is off by a little).
-  std::vector<double> given(scores_.size());
-  double margin = 0.0;
-  for (std::size_t k = 0; k < scores_.size(); ++k) {
-    given[k] = time_given_score(p_time, rho_, scores_[k]);
-    margin += weights_[k] * given[k];
+std::vector<double> BranchRadii::joints(double p_time) const {
+  std::vector<double> out;
+  if (!coupled_ || !(p_time > 0.0) || !(p_time < 1.0)) {
+    for (const double r : radius_) out.push_back(p_time * r);
+    return out;
   }
-  if (!(margin > 0.0)) return independent;
-  double joint = 0.0;
-  for (std::size_t k = 0; k < scores_.size(); ++k) joint += std::min(1.0, given[k] * p_time / margin) * within_[j][k];
-  joint *= others_[j];
-  // Never past what the two curves allow (Frechet bounds).
-  return std::clamp(joint, std::max(0.0, p_time + radius_[j] - 1.0), std::min(p_time, radius_[j]));
+  const std::vector<double> given = time_given_components(*coupled_, p_time);
+  for (std::size_t j = 0; j < radius_.size(); ++j) {
+    double joint = 0.0;
+    for (std::size_t k = 0; k < given.size(); ++k) joint += given[k] * within_[j][k];
+    joint *= others_[j];
+    // Never past what the two curves allow (Frechet bounds).
+    out.push_back(std::clamp(joint, std::max(0.0, p_time + radius_[j] - 1.0), std::min(p_time, radius_[j])));
+  }
+  return out;
 }
 
 }  // namespace p3at::verifier::engine

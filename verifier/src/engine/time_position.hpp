@@ -28,6 +28,10 @@
 
 namespace p3at::verifier::engine {
 
+/// True when r's final components carry time scores (one each) and a
+/// positive correlation with its finish time.
+bool has_time_scores(const RobotOutcome& r);
+
 /// The robot whose finish time is the branch's completion time and whose
 /// final components carry time scores (see above); none when no robot's
 /// does, or more than one robot's finish is the completion.
@@ -36,6 +40,22 @@ std::optional<std::size_t> time_coupled_robot(const Branch& b);
 /// P(t <= T | score z) for P(t <= T) = p_time and correlation rho.
 double time_given_score(double p_time, double rho, double z);
 
+/// What the copula needs of a robot's final components: their time scores,
+/// weights and the correlation (a copy, so that it outlives the outcome).
+struct TimeScores {
+  std::vector<double> scores, weights;
+  double rho = 0.0;
+};
+/// r's (r has time scores).
+TimeScores time_scores_of(const RobotOutcome& r);
+
+/// P(t <= T | component k) for each component, for P(t <= T) = p_time,
+/// rescaled so that over the components they average to p_time exactly (a
+/// handful of points stand for the paths' circle: the copula's margin over
+/// them is off by a little). The one place both vipars verify's joint and a
+/// criterion's use the copula.
+std::vector<double> time_given_components(const TimeScores& s, double p_time);
+
 /// A branch's radius probabilities at a list of Rmax, kept apart where the
 /// joint with the completion time needs them.
 class BranchRadii {
@@ -43,18 +63,16 @@ class BranchRadii {
   BranchRadii(const Branch& b, const mission::Mission& mission, const std::vector<double>& rmax);
   /// P(every robot within rmax[j]) (the radius curve's term).
   double radius(std::size_t j) const { return radius_[j]; }
-  /// P(t <= T and every robot within rmax[j]), for P(t <= T) = p_time:
-  /// p_time times radius(j) when no robot is coupled.
-  double joint(double p_time, std::size_t j) const;
+  /// P(t <= T and every robot within rmax[j]) for every j, for P(t <= T) =
+  /// p_time: p_time times radius(j) when no robot is coupled. All Rmax at
+  /// once: the conditional times depend on p_time alone.
+  std::vector<double> joints(double p_time) const;
 
  private:
   std::vector<double> radius_;          ///< per Rmax
   std::vector<double> others_;          ///< per Rmax: the uncoupled robots' product
   std::vector<std::vector<double>> within_;  ///< per Rmax, per coupled component: its weight x P(within)
-  std::vector<double> scores_;          ///< per coupled component
-  std::vector<double> weights_;         ///< per coupled component
-  double rho_ = 0.0;
-  bool coupled_ = false;
+  std::optional<TimeScores> coupled_;        ///< the coupled robot's (time_coupled_robot), if any
 };
 
 }  // namespace p3at::verifier::engine

@@ -128,7 +128,7 @@ Point probabilities(const SystemOutcome& o, const mission::Mission& mission, dou
     const engine::BranchRadii radii(b, mission, {rmax});
     p.time += b.weight * pt;
     p.radius += b.weight * radii.radius(0);
-    p.joint += b.weight * radii.joint(pt, 0);  // time and position together (engine/time_position.hpp)
+    p.joint += b.weight * radii.joints(pt)[0];  // time and position together (engine/time_position.hpp)
   }
   return p;
 }
@@ -312,8 +312,8 @@ Result<VerifyResult> verify_outcome(const mission::Mission& mission, const Model
       std::vector<double> row(g.rmax.size(), 0.0);
       std::vector<Region> regions;
       for (std::size_t b = 0; b < o.branches.size(); ++b) {
-        const double pt = time_cdf(o.branches[b].completion_time_s, t, cycle_s);
-        for (std::size_t j = 0; j < g.rmax.size(); ++j) row[j] += o.branches[b].weight * radius[b].joint(pt, j);
+        const std::vector<double> joint = radius[b].joints(time_cdf(o.branches[b].completion_time_s, t, cycle_s));
+        for (std::size_t j = 0; j < g.rmax.size(); ++j) row[j] += o.branches[b].weight * joint[j];
       }
       for (double& v : row) v = unit(v);
       for (const double v : row) regions.push_back(classify(v, options));
