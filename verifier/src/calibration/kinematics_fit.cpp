@@ -1,7 +1,8 @@
-// The base's kinematics (models.hpp: Kinematics) from the odometric velocity
-// of each cycle: the accelerations are the slopes of the ramps after a
-// manoeuvre's command starts and after it returns to zero, the rotational cap
-// the plateau of spins commanded faster than the robot turns, the cycle the
+// The base's kinematics (models.hpp: Kinematics) from the odometry of each
+// cycle: the accelerations are the rates of the ramps after a manoeuvre's
+// command starts and after it returns to zero (ramp_fit.hpp: fitted on the
+// travel, started from the slope of the speeds), the rotational cap the
+// plateau of spins commanded faster than the robot turns, the cycle the
 // median time between rows. The ramps need no ground truth.
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "calibration/fit_parts.hpp"
+#include "calibration/ramp_fit.hpp"
 
 namespace p3at::verifier::calibration_detail {
 namespace {
@@ -28,10 +30,22 @@ constexpr double kSaturated = 1.05;
 // top that make a plateau.
 constexpr std::size_t kMinRows = 4;
 constexpr std::size_t kMinPlateauCycles = 3;
+// Rows of plateau (and of rest after a slow-down) a ramp's trace carries
+// besides the ramp: they pin its offset and its end. A speed below this share
+// of the plateau counts as at rest.
+constexpr std::size_t kTraceTopRows = 3;
+constexpr std::size_t kTraceRestRows = 3;
+constexpr double kAtRest = 0.05;
 
 struct Ramp {
   std::vector<double> t;
   std::vector<double> v;  ///< |velocity|
+};
+
+/// A manoeuvre kind's ramps of one direction (speed-ups or slow-downs).
+struct RampSet {
+  std::vector<Ramp> speeds;       ///< the 20-80 % speeds, for the first estimate
+  std::vector<RampTrace> traces;  ///< the travel, for the fit
 };
 
 struct Plateau {
@@ -45,8 +59,23 @@ double median(std::vector<double> v) {
   return n % 2 == 1 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2.0;
 }
 
-// The speed-up after the command starts, the slow-down after it returns to 0.
-void collect(const Manoeuvre& m, std::vector<Ramp>& ups, std::vector<Ramp>& downs, std::vector<Plateau>& plateaus) {
+// The rows [first, last] of a manoeuvre as a ramp's trace: the travel along
+// the command's direction (`sign`), from the increments of `ivs`.
+RampTrace trace_of(const std::vector<Interval>& ivs, const Manoeuvre& m, std::size_t first, std::size_t last,
+                   double sign, bool rotation) {
+  RampTrace tr;
+  double travel = 0.0;
+  for (std::size_t row = first; row <= last; ++row) {
+    if (row > first) travel += sign * (rotation ? ivs[row - 1].dtheta_rad : ivs[row - 1].ds_m);
+    tr.t_s.push_back(m.rows[row].t_s);
+    tr.travel.push_back(travel);
+  }
+  return tr;
+}
+
+// The speed-up after the command starts, the slow-down after it returns to 0:
+// their 20-80 % speeds (for a first estimate) and their travel (for the fit).
+void collect(const Manoeuvre& m, RampSet& up_set, RampSet& down_set, std::vector<Plateau>& plateaus) {
   const bool rotation = m.kind == ManoeuvreKind::spin;
   const std::vector<Interval> ivs = intervals(m);
   std::vector<double> speed;
@@ -62,6 +91,7 @@ void collect(const Manoeuvre& m, std::vector<Ramp>& ups, std::vector<Ramp>& down
   if (a == n) return;
   std::size_t b = a;
   while (b < n && command[b] == command[a]) ++b;
+  const double sign = command[a] > 0.0 ? 1.0 : -1.0;
 
   // The plateau: the mean speed from the cycle after the ramp first comes
   // near the peak (that one may be partial) until the command changes. A
@@ -72,31 +102,60 @@ void collect(const Manoeuvre& m, std::vector<Ramp>& ups, std::vector<Ramp>& down
   if (!(peak > 0.0)) return;
   std::size_t r = a;
   while (speed[r] < 0.9 * peak) ++r;
+  const std::size_t near_top = r;
   if (r + 1 < b) ++r;
   double sum = 0.0;
   for (std::size_t i = r; i < b; ++i) sum += speed[i];
   const double plateau = sum / static_cast<double>(b - r);
-  if (b - r >= kMinPlateauCycles) plateaus.push_back(Plateau{plateau, std::abs(command[a])});
+  const bool has_plateau = b - r >= kMinPlateauCycles;
+  if (has_plateau) plateaus.push_back(Plateau{plateau, std::abs(command[a])});
 
   Ramp up;
+  std::size_t first_above_low = b;
   for (std::size_t i = a; i < b && speed[i] < 0.9 * plateau; ++i) {
+    if (speed[i] > kRampLow * plateau && first_above_low == b) first_above_low = i;
     if (speed[i] > kRampLow * plateau && speed[i] < kRampHigh * plateau) {
       up.t.push_back(ivs[i].t_mid_s);
       up.v.push_back(speed[i]);
     }
   }
-  ups.push_back(up);
+  up_set.speeds.push_back(up);
+  // The travel from the row the command starts at to a few rows into the
+  // plateau; the ramp starts before the end of its first cycle above 20 %.
+  if (has_plateau && first_above_low < b) {
+    RampTrace tr = trace_of(ivs, m, a, std::min(near_top + 1 + kTraceTopRows, b), sign, rotation);
+    tr.plateau = plateau;
+    tr.start_lo_s = m.rows[a].t_s - ivs[a].dt_s;
+    tr.start_hi_s = m.rows[first_above_low + 1].t_s;
+    up_set.traces.push_back(std::move(tr));
+  }
 
   Ramp down;
   std::size_t i = b;
   while (i < n && command[i] == 0.0 && speed[i] >= kRampHigh * plateau) ++i;  // the command's latency
+  const std::size_t first_below_high = i;
   for (; i < n && command[i] == 0.0 && speed[i] > kRampLow * plateau; ++i) {
     if (speed[i] < kRampHigh * plateau) {
       down.t.push_back(ivs[i].t_mid_s);
       down.v.push_back(speed[i]);
     }
   }
-  downs.push_back(down);
+  down_set.speeds.push_back(down);
+  // From a few plateau rows before the command returns to 0 to a few rows at
+  // rest (or the log's end: a manoeuvre may stop logging once at rest).
+  std::size_t rest = i;
+  while (rest < n && command[rest] == 0.0 && speed[rest] > kAtRest * plateau) ++rest;
+  if (has_plateau && b < n && first_below_high < n) {
+    const std::size_t first = b >= r + kTraceTopRows ? b - kTraceTopRows : r;
+    std::size_t last = std::min(rest, n);
+    while (last < n && last < rest + 1 + kTraceRestRows && command[last] == 0.0) ++last;
+    RampTrace tr = trace_of(ivs, m, first, last, sign, rotation);
+    tr.plateau = plateau;
+    tr.slowing = true;
+    tr.start_lo_s = m.rows[b].t_s - ivs[b].dt_s;
+    tr.start_hi_s = m.rows[first_below_high + 1].t_s;
+    down_set.traces.push_back(std::move(tr));
+  }
 }
 
 struct SlopeFit {
@@ -156,22 +215,34 @@ SlopeFit pooled_slope(const std::vector<Ramp>& ramps) {
   return out;
 }
 
-// Fills `value` (SI) and its report line from a ramp fit, or keeps the default.
-void ramp_parameter(const SlopeFit& fit, double sign, double unit_scale, const std::string& name,
-                    const std::string& unit, const std::string& residual_unit, const std::string& what, double& value,
-                    KinematicsFit& out, const std::string& robot) {
+// Fills `value` (SI) and its report line from a kind's ramps, or keeps the
+// default: the speeds' slope starts the search and the travel decides; with
+// fewer than 2 ramps that reach a plateau (short manoeuvres) the slope stands,
+// and the note says so.
+void ramp_parameter(const RampSet& ramps, double sign, double unit_scale, const std::string& name,
+                    const std::string& unit, const std::string& what, double& value, KinematicsFit& out,
+                    const std::string& robot) {
   ParameterFit f;
   f.name = name;
   f.unit = unit;
-  f.residual_unit = residual_unit;
-  const double measured = sign * fit.slope;
-  if (fit.ok && measured > 0.0) {
-    value = measured;
-    f.value = measured * unit_scale;
+  const SlopeFit first = pooled_slope(ramps.speeds);
+  const RampFit fit = first.ok ? fit_ramp_rate(ramps.traces, sign * first.slope) : RampFit{};
+  if (fit.ok) {
+    value = fit.rate;
+    f.value = fit.rate * unit_scale;
     f.std_error = fit.se * unit_scale;
     f.residual_rms = fit.rms * unit_scale;
+    f.residual_unit = unit_scale == 1.0 ? "m" : "deg";
     f.runs = fit.ramps;
-    f.note = what;
+    f.note = "odometric " + what;
+  } else if (first.ok && sign * first.slope > 0.0) {
+    value = sign * first.slope;
+    f.value = value * unit_scale;
+    f.std_error = first.se * unit_scale;
+    f.residual_rms = first.rms * unit_scale;
+    f.residual_unit = unit_scale == 1.0 ? "m/s" : "deg/s";
+    f.runs = first.ramps;
+    f.note = "slope of the 20-80 % speeds of the " + what + " (fewer than 2 reach a plateau: 1-2 % low)";
   } else {
     f.value = value * unit_scale;
     f.note = "default kept: fewer than 2 usable ramps";
@@ -189,7 +260,7 @@ KinematicsFit fit_kinematics(const std::string& robot, const std::vector<const M
   k = defaults;
 
   std::vector<double> dts;
-  std::vector<Ramp> trans_up, trans_down, rot_up, rot_down;
+  RampSet trans_up, trans_down, rot_up, rot_down;
   std::vector<Plateau> trans_plateaus, rot_plateaus;
   std::size_t used = 0;
   for (const Manoeuvre* m : manoeuvres) {
@@ -221,14 +292,14 @@ KinematicsFit fit_kinematics(const std::string& robot, const std::vector<const M
   }
   out.fits.push_back(cycle);
 
-  ramp_parameter(pooled_slope(trans_up), 1.0, 1.0, "trans_accel_mps2", "m/s^2", "m/s",
-                 "slope of the odometric speed-ups", k.trans_accel_mps2, out, robot);
-  ramp_parameter(pooled_slope(trans_down), -1.0, 1.0, "trans_decel_mps2", "m/s^2", "m/s",
-                 "slope of the odometric slow-downs", k.trans_decel_mps2, out, robot);
-  ramp_parameter(pooled_slope(rot_up), 1.0, kRadToDeg, "rot_accel_degps2", "deg/s^2", "deg/s",
-                 "slope of the spins' odometric speed-ups", k.rot_accel_radps2, out, robot);
-  ramp_parameter(pooled_slope(rot_down), -1.0, kRadToDeg, "rot_decel_degps2", "deg/s^2", "deg/s",
-                 "slope of the spins' odometric slow-downs", k.rot_decel_radps2, out, robot);
+  ramp_parameter(trans_up, 1.0, 1.0, "trans_accel_mps2", "m/s^2", "travel of the speed-ups", k.trans_accel_mps2, out,
+                 robot);
+  ramp_parameter(trans_down, -1.0, 1.0, "trans_decel_mps2", "m/s^2", "travel of the slow-downs", k.trans_decel_mps2,
+                 out, robot);
+  ramp_parameter(rot_up, 1.0, kRadToDeg, "rot_accel_degps2", "deg/s^2", "turn of the spins' speed-ups",
+                 k.rot_accel_radps2, out, robot);
+  ramp_parameter(rot_down, -1.0, kRadToDeg, "rot_decel_degps2", "deg/s^2", "turn of the spins' slow-downs",
+                 k.rot_decel_radps2, out, robot);
 
   std::vector<double> capped;
   double fastest = 0.0;
