@@ -145,9 +145,9 @@ void collect(const Manoeuvre& m, RampSet& up_set, RampSet& down_set, std::vector
   // rest (or the log's end: a manoeuvre may stop logging once at rest).
   std::size_t rest = i;
   while (rest < n && command[rest] == 0.0 && speed[rest] > kAtRest * plateau) ++rest;
-  if (has_plateau && b < n && first_below_high < n) {
+  if (has_plateau && first_below_high < n) {
     const std::size_t first = b >= r + kTraceTopRows ? b - kTraceTopRows : r;
-    std::size_t last = std::min(rest, n);
+    std::size_t last = rest;
     while (last < n && last < rest + 1 + kTraceRestRows && command[last] == 0.0) ++last;
     RampTrace tr = trace_of(ivs, m, first, last, sign, rotation);
     tr.plateau = plateau;
@@ -215,16 +215,18 @@ SlopeFit pooled_slope(const std::vector<Ramp>& ramps) {
   return out;
 }
 
-// Fills `value` (SI) and its report line from a kind's ramps, or keeps the
-// default: the speeds' slope starts the search and the travel decides; with
-// fewer than 2 ramps that reach a plateau (short manoeuvres) the slope stands,
-// and the note says so.
-void ramp_parameter(const RampSet& ramps, double sign, double unit_scale, const std::string& name,
-                    const std::string& unit, const std::string& what, double& value, KinematicsFit& out,
-                    const std::string& robot) {
+// Fills `value` (SI) and its report line from a kind's ramps (`what`: which
+// ones, for the note), or keeps the default: the speeds' slope starts the
+// search and the travel decides; with fewer than 2 ramps that reach a plateau
+// (short manoeuvres) the slope stands, and the note says so. A spin's are
+// reported in degrees.
+void ramp_parameter(const RampSet& ramps, double sign, bool rotation, const std::string& name, const std::string& what,
+                    double& value, KinematicsFit& out, const std::string& robot) {
+  const double unit_scale = rotation ? kRadToDeg : 1.0;
+  const std::string travel_unit = rotation ? "deg" : "m";
   ParameterFit f;
   f.name = name;
-  f.unit = unit;
+  f.unit = travel_unit + "/s^2";
   const SlopeFit first = pooled_slope(ramps.speeds);
   const RampFit fit = first.ok ? fit_ramp_rate(ramps.traces, sign * first.slope) : RampFit{};
   if (fit.ok) {
@@ -232,15 +234,15 @@ void ramp_parameter(const RampSet& ramps, double sign, double unit_scale, const 
     f.value = fit.rate * unit_scale;
     f.std_error = fit.se * unit_scale;
     f.residual_rms = fit.rms * unit_scale;
-    f.residual_unit = unit_scale == 1.0 ? "m" : "deg";
+    f.residual_unit = travel_unit;
     f.runs = fit.ramps;
-    f.note = "odometric " + what;
+    f.note = std::string(rotation ? "odometric turn of the " : "odometric travel of the ") + what;
   } else if (first.ok && sign * first.slope > 0.0) {
     value = sign * first.slope;
     f.value = value * unit_scale;
     f.std_error = first.se * unit_scale;
     f.residual_rms = first.rms * unit_scale;
-    f.residual_unit = unit_scale == 1.0 ? "m/s" : "deg/s";
+    f.residual_unit = travel_unit + "/s";
     f.runs = first.ramps;
     f.note = "slope of the 20-80 % speeds of the " + what + " (fewer than 2 reach a plateau: 1-2 % low)";
   } else {
@@ -292,14 +294,10 @@ KinematicsFit fit_kinematics(const std::string& robot, const std::vector<const M
   }
   out.fits.push_back(cycle);
 
-  ramp_parameter(trans_up, 1.0, 1.0, "trans_accel_mps2", "m/s^2", "travel of the speed-ups", k.trans_accel_mps2, out,
-                 robot);
-  ramp_parameter(trans_down, -1.0, 1.0, "trans_decel_mps2", "m/s^2", "travel of the slow-downs", k.trans_decel_mps2,
-                 out, robot);
-  ramp_parameter(rot_up, 1.0, kRadToDeg, "rot_accel_degps2", "deg/s^2", "turn of the spins' speed-ups",
-                 k.rot_accel_radps2, out, robot);
-  ramp_parameter(rot_down, -1.0, kRadToDeg, "rot_decel_degps2", "deg/s^2", "turn of the spins' slow-downs",
-                 k.rot_decel_radps2, out, robot);
+  ramp_parameter(trans_up, 1.0, false, "trans_accel_mps2", "speed-ups", k.trans_accel_mps2, out, robot);
+  ramp_parameter(trans_down, -1.0, false, "trans_decel_mps2", "slow-downs", k.trans_decel_mps2, out, robot);
+  ramp_parameter(rot_up, 1.0, true, "rot_accel_degps2", "spins' speed-ups", k.rot_accel_radps2, out, robot);
+  ramp_parameter(rot_down, -1.0, true, "rot_decel_degps2", "spins' slow-downs", k.rot_decel_radps2, out, robot);
 
   std::vector<double> capped;
   double fastest = 0.0;
