@@ -79,8 +79,9 @@ int main(int argc, char** argv) {
                "as OVERRIDE. A teammate's NO-GO, a hash mismatch or a silent teammate still refuse");
   app.add_flag("--accept-unvouched", opt.check.accept_unvouched,
                "Operator's decision: launch a mission whose probabilities say GO although the model does not vouch "
-               "for one of its approximations (docs/verifier.md); without it such a mission is refused with exit 7. "
-               "Logged, and published as OVERRIDE");
+               "for one of its approximations (docs/verifier.md); without it such a mission is refused with exit 7, "
+               "before it is even evaluated when the mission file shows the approximation. Logged, and published as "
+               "OVERRIDE");
   app.add_option("--hal", opt.hal_url, "Robot URL: tcp://127.0.0.1:8101 or serial:///dev/ttyS0?baud=9600");
   app.add_option("--lcm", opt.lcm_url, "Team link LCM URL, e.g. udpm://239.255.76.67:7667?ttl=1");
   app.add_option("--team-key", opt.team_key_file, "Team key file (else $P3AT_TEAM_KEY names it)");

@@ -52,7 +52,8 @@ void register_gate(CLI::App& app, int& exit_status) {
       "moves (docs/launch-gate.md), as a clear GO / NO-GO with the probabilities and the mission's content hash. "
       "Exit 0 = GO, 1 = NO-GO, 2 = bad input (unreadable mission, models or flags; no models file), "
       "3 = the verifier cannot evaluate the mission with these models (it cannot run, or the mission has an "
-      "approximation the model does not vouch for: docs/verifier.md; --accept-unvouched to launch anyway).");
+      "approximation the model does not vouch for: docs/verifier.md; --accept-unvouched to launch anyway). An "
+      "unvouched approximation the mission file shows is refused in milliseconds, without evaluating the mission.");
   sub->add_option("mission", flags->mission_path, "mission file (YAML, docs/mission-format.md)")->required();
   sub->add_option("--models", flags->models_path,
                   "robot models file (docs/verifier.md); default: models.yaml beside the mission file, as on the "
@@ -63,8 +64,10 @@ void register_gate(CLI::App& app, int& exit_status) {
       ->check(CLI::Range(0.0, 1.0));
   sub->add_option("--criterion", flags->criteria_files, "extra criterion file (PARS, docs/verifier.md); repeatable");
   sub->add_flag("--accept-unvouched", flags->accept_unvouched,
-                "Operator's decision: a mission whose probabilities say GO but whose approximations the model does not "
-                "vouch for is GO (logged; the robots publish it as OVERRIDE) instead of cannot-evaluate (exit 3)");
+                "Operator's decision: a mission whose approximations the model does not vouch for is evaluated, and "
+                "is GO if its probabilities say GO (logged; the robots publish it as OVERRIDE). Without it such a "
+                "mission is cannot-evaluate (exit 3), refused before it is even evaluated when the mission file "
+                "shows the approximation");
   sub->callback([flags, &exit_status] { exit_status = run_gate(*flags); });
 }
 

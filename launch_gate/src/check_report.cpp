@@ -13,6 +13,35 @@ std::string line(const std::string& label, const std::string& value) {
   return padded + value + "\n";
 }
 
+std::string approximation_lines(const std::vector<verifier::Approximation>& approximations) {
+  std::string out;
+  for (const verifier::Approximation& a : approximations) {
+    out += std::string("  ") + (a.vouched ? "approximation (vouched) " : "UNVOUCHED approximation ") +
+           verifier::to_string(a.kind) + ": " + a.robot_name + (a.state.empty() ? "" : " '" + a.state + "'") +
+           (a.where.empty() ? "" : " at " + a.where) + ": " + a.detail + "\n";
+  }
+  return out;
+}
+
+std::string decision_time_line(const CheckReport& report) {
+  return line("decision time", format_fixed(report.total_ms, 1) + " ms (verifier " + format_fixed(report.verify_ms, 1) +
+                                   " ms; " + format_fixed(report.total_cpu_ms, 1) + " ms of CPU)");
+}
+
+/// A refusal without evaluation: what was found and where, no probabilities
+/// (none was computed, and none could have made the mission GO).
+std::string format_refused_before_evaluation(const CheckReport& report, const std::string& name) {
+  std::string out = "CANNOT EVALUATE  mission " + name +
+                    ": the model does not vouch for it; refused before evaluating (no probability computed)\n";
+  out += line("mission file", report.mission_path);
+  out += line("robot models", report.models_path);
+  out += line("content hash", report.mission_hash);
+  out += approximation_lines(report.result.approximations);
+  out += "  cannot evaluate: " + report.error + "\n";
+  out += decision_time_line(report);
+  return out;
+}
+
 }  // namespace
 
 std::string format_check(const CheckReport& report) {
@@ -24,6 +53,7 @@ std::string format_check(const CheckReport& report) {
     return out;
   }
   const verifier::VerifyResult& r = report.result;
+  if (report.refused_before_evaluation) return format_refused_before_evaluation(report, name);
   if (report.status == CheckStatus::cannot_evaluate) {
     out += "CANNOT EVALUATE  mission " + name + ": the probabilities say GO, but the model does not vouch for it\n";
   } else if (report.accepted_unvouched) {
@@ -63,20 +93,18 @@ std::string format_check(const CheckReport& report) {
                                          (b.where.empty() ? "" : " " + b.where));
   }
   for (const std::string& failed : r.failed) out += "  failed: " + failed + "\n";
-  for (const verifier::Approximation& a : r.approximations) {
-    out += std::string("  ") + (a.vouched ? "approximation (vouched) " : "UNVOUCHED approximation ") +
-           verifier::to_string(a.kind) + ": " + a.robot_name + (a.state.empty() ? "" : " '" + a.state + "'") +
-           (a.where.empty() ? "" : " at " + a.where) + ": " + a.detail + "\n";
-  }
+  out += approximation_lines(r.approximations);
   if (report.status == CheckStatus::cannot_evaluate) out += "  cannot evaluate: " + report.error + "\n";
-  out += line("decision time", format_fixed(report.total_ms, 1) + " ms (verifier " + format_fixed(report.verify_ms, 1) + " ms; " +
-                                   format_fixed(report.total_cpu_ms, 1) + " ms of CPU)");
+  out += decision_time_line(report);
   return out;
 }
 
 std::string check_fields(const CheckReport& report) {
   std::string out = std::string("decision=") + to_string(report.status);
-  if (report.evaluated()) {
+  if (report.refused_before_evaluation) {
+    out += " evaluated=false hash=" + report.mission_hash +
+           " unvouched=" + verifier::unvouched_kinds(report.result.approximations);
+  } else if (report.evaluated()) {
     const verifier::VerifyResult& r = report.result;
     out += " p_time=" + format_fixed(r.p_time, 4) + " p_radius=" + format_fixed(r.p_radius, 4) + " p_joint=" + format_fixed(r.p_joint, 4) +
            " threshold=" + format_fixed(r.threshold, 4) + " tmax_s=" + format_fixed(r.tmax_s, 1) + " rmax_m=" + format_fixed(r.rmax_m, 2) +

@@ -8,6 +8,7 @@
 
 #include "p3at/launch_gate/mission_hash.hpp"
 #include "p3at/mission/loader.hpp"
+#include "p3at/verifier/approximations.hpp"
 
 namespace p3at::gate {
 namespace {
@@ -27,6 +28,24 @@ std::string join(const std::vector<std::string>& lines, const char* separator) {
   std::string out;
   for (const std::string& line : lines) out += (out.empty() ? "" : separator) + line;
   return out;
+}
+
+/// True, with `result` holding the approximations, when the mission file and
+/// the models alone show an approximation the model does not vouch for
+/// (verifier::detect_approximations_before_evaluation()). A robot without a
+/// model is left to the evaluation, which names it (cannot-run).
+bool refuse_before_evaluating(const mission::Mission& mission, const verifier::Models& models,
+                              verifier::VerifyResult& result) {
+  for (const mission::RobotSpec& robot : mission.robots) {
+    if (models.find_robot(robot.name) == nullptr) return false;
+  }
+  std::vector<verifier::Approximation> found = verifier::detect_approximations_before_evaluation(mission, models);
+  if (verifier::all_vouched(found)) return false;
+  result = verifier::VerifyResult{};
+  result.approximations = std::move(found);
+  result.evaluable = false;
+  result.go = false;
+  return true;
 }
 
 }  // namespace
@@ -96,6 +115,21 @@ CheckReport pre_launch_check(const CheckRequest& request, const VerdictSource& s
   report.mission_hash = mission_content_hash(*mission_bytes, *models_bytes, report.models->environment.walls);
 
   const auto verify_start = std::chrono::steady_clock::now();
+  if (!request.accept_unvouched && refuse_before_evaluating(*report.mission, *report.models, report.result)) {
+    // Not GO whatever the probabilities would say, so they are not computed:
+    // the operator hears it in milliseconds, not after minutes of evaluation.
+    report.verify_ms = ms_since(verify_start);
+    report.refused_before_evaluation = true;
+    verifier::locate_in_mission_file(report.result, *mission_bytes, request.mission_path);
+    report.status = CheckStatus::cannot_evaluate;
+    report.error = "the model does not vouch for this mission (" +
+                   verifier::unvouched_kinds(report.result.approximations) +
+                   "): refused before evaluating it, its P(success) could not be trusted; accept it explicitly "
+                   "(--accept-unvouched) to have it evaluated and launched if the probabilities say GO";
+    report.total_ms = ms_since(start);
+    report.total_cpu_ms = thread_cpu_ms() - start_cpu_ms;
+    return report;
+  }
   Result<verifier::VerifyResult> verdict =
       source(*report.mission, *report.models, request.options, request.criteria_files, nullptr);
   report.verify_ms = ms_since(verify_start);

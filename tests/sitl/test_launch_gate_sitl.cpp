@@ -180,8 +180,10 @@ TEST_CASE("cannot evaluate: a mission faster than the robots' top speed; both re
   const std::string log2 = robot2.log();
   INFO("robot1 log:\n" << log1);
   INFO("robot2 log:\n" << log2);
-  // The probabilities say GO; the refusal says why it cannot be trusted, where.
-  CHECK(contains(log1, "CANNOT EVALUATE  mission relay_too_fast"));
+  // The speed shows in the mission file, so each robot refuses before
+  // evaluating (in milliseconds, no probability computed), saying why and where.
+  CHECK(contains(log1, "CANNOT EVALUATE  mission relay_too_fast: the model does not vouch for it; refused before evaluating"));
+  CHECK(contains(log1, "decision=cannot-evaluate evaluated=false"));
   CHECK(contains(log1, "UNVOUCHED approximation speed-above-top: robot1 at " + mission + ":"));
   CHECK(contains(log1, "event=gate-refused robot=robot1 why=cannot-evaluate"));
   CHECK(contains(log2, "event=gate-refused robot=robot2 why=cannot-evaluate"));

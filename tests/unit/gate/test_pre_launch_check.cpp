@@ -196,6 +196,95 @@ TEST_CASE("the printed report: decision, probabilities against the threshold, fa
   CHECK(fields.find("decision=NO-GO p_time=0.4200 p_radius=1.0000 p_joint=0.4200 threshold=0.8000") == 0);
 }
 
+namespace {
+
+/// The relay with robot1's NOISE at gain 0.25, redrawn every 10 cycles on its
+/// 2 m leg: noise-redrawn-strong, an approximation the model does not vouch
+/// for, which the mission file shows by itself.
+std::string relay_with_strong_noise() {
+  std::string text = gate::read_file_bytes(kRelayMission).value();
+  const std::string leg = "goal: [3.0, 1.0], dropoff_m: 0.5}";
+  const auto at = text.find(leg);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, leg.size(), "goal: [3.0, 1.0], dropoff_m: 0.5, noise_gain: 0.25}");
+  return text;
+}
+
+}  // namespace
+
+TEST_CASE("an unvouched approximation the mission file shows: refused before the verifier runs, located; "
+          "accepted, it is evaluated") {
+  Folder f;
+  write(f.mission, relay_with_strong_noise());
+  test::ScriptedVerifier scripted;
+  const auto report = gate::pre_launch_check(request(f), scripted.source());
+  CHECK(report.status == CheckStatus::cannot_evaluate);
+  CHECK(report.refused_before_evaluation);
+  CHECK(scripted.calls.empty());  // no probability could have made it GO: none was computed
+  CHECK_FALSE(report.verified());
+  CHECK(report.evaluated());
+  CHECK(report.mission_hash.size() == 64);  // the files were read and hashed all the same
+  REQUIRE_FALSE(report.result.approximations.empty());
+  const verifier::Approximation& a = report.result.approximations.front();
+  CHECK(a.kind == verifier::ApproximationKind::noise_redrawn_strong);
+  CHECK(a.robot_name == "robot1");
+  CHECK(a.state == "drive");
+  CHECK(a.where.rfind(f.mission + ":", 0) == 0);
+  CHECK(report.error.find("noise-redrawn-strong") != std::string::npos);
+  CHECK(report.error.find("refused before evaluating") != std::string::npos);
+
+  const std::string text = gate::format_check(report);
+  CHECK(text.rfind("CANNOT EVALUATE  mission relay: the model does not vouch for it; refused before evaluating", 0) == 0);
+  CHECK(text.find("UNVOUCHED approximation noise-redrawn-strong: robot1 'drive' at " + f.mission + ":") !=
+        std::string::npos);
+  CHECK(text.find("P(done by") == std::string::npos);  // no probability is printed: none was computed
+  CHECK(text.find("P(success) =") == std::string::npos);
+  CHECK(text.find(report.mission_hash) != std::string::npos);
+  CHECK(text.find("decision time") != std::string::npos);
+  const std::string fields = gate::check_fields(report);
+  CHECK(fields.rfind("decision=cannot-evaluate evaluated=false hash=" + report.mission_hash +
+                         " unvouched=noise-redrawn-strong decision_ms=",
+                     0) == 0);
+
+  // The operator accepts the approximation: now the probabilities decide.
+  auto accepted = request(f);
+  accepted.accept_unvouched = true;
+  scripted.p_joint = 0.5;
+  const auto evaluated = gate::pre_launch_check(accepted, scripted.source());
+  CHECK(scripted.calls.size() == 1);
+  CHECK_FALSE(evaluated.refused_before_evaluation);
+  CHECK(evaluated.status == CheckStatus::no_go);
+}
+
+TEST_CASE("an unvouched approximation only the evaluation finds: evaluated first, and a GO becomes cannot-evaluate") {
+  // Robots racing, or teammates driving near the path, show only in the
+  // evaluation: the gate cannot refuse those before it.
+  Folder f;
+  test::ScriptedVerifier scripted;
+  gate::VerdictSource racing = [&scripted](const mission::Mission& mission, const verifier::Models& models,
+                                           const verifier::VerifyOptions& options,
+                                           const std::vector<std::string>& criteria,
+                                           const verifier::TeamSnapshot* from) -> Result<verifier::VerifyResult> {
+    Result<verifier::VerifyResult> r = scripted.source()(mission, models, options, criteria, from);
+    verifier::Approximation a;
+    a.kind = verifier::ApproximationKind::robots_racing;
+    a.robot_name = "robot1";
+    a.state = "drive";
+    a.element = verifier::MissionElement::state;
+    a.detail = "scripted race";
+    a.vouched = false;
+    r->approximations.push_back(a);
+    r->evaluable = false;
+    return r;
+  };
+  const auto report = gate::pre_launch_check(request(f), racing);
+  CHECK(scripted.calls.size() == 1);
+  CHECK_FALSE(report.refused_before_evaluation);
+  CHECK(report.status == CheckStatus::cannot_evaluate);
+  CHECK(gate::format_check(report).rfind("CANNOT EVALUATE  mission relay: the probabilities say GO", 0) == 0);
+  CHECK(gate::check_fields(report).find("p_joint=0.9000") != std::string::npos);
+}
+
 TEST_CASE("the real verifier through the gate gives what verify() gives; a Tmax too tight is NO-GO") {
   Folder f;
   const auto report = gate::pre_launch_check(request(f), gate::verifier_source());

@@ -241,7 +241,9 @@ class Detector {
       const auto& msg = std::get<mission::NotifiedParams>(tr.trigger).message;
       add(ApproximationKind::message_interrupts_motion, i, MissionElement::transition, t,
           "'" + msg + "' can interrupt " + std::string(mission::to_string(r.states[tr.from].kind())) + " state '" +
-              r.states[tr.from].name + "' mid-motion: the model puts the robot where the state would have ended");
+              r.states[tr.from].name +
+              "' mid-motion: the model places the robot along its paths at 12 bins of the message's time "
+              "(docs/verifier.md), measured outside the bounds on patrol_recall");
       // Where the robot ends then depends on when the message came: if a final
       // state follows without another leg to a fixed goal, the final position
       // and the completion time are coupled.
@@ -279,8 +281,8 @@ class Detector {
         if (mark[to] == 1) {
           add(ApproximationKind::fsa_loop, i, MissionElement::transition, t,
               "transition '" + r.states[s].name + "' -> '" + r.states[to].name +
-                  "' closes a loop: the number of laps is a random variable the model does not carry (it follows "
-                  "one ordering per lap up to its event budget)");
+                  "' closes a loop: the model evaluates it lap by lap, each lap racing its exits, up to its "
+                  "budget (the laps beyond it count as failure), measured outside the bounds on patrol_recall");
         } else if (mark[to] == 0) {
           dfs(to);
         }
@@ -426,6 +428,13 @@ const char* to_string(ApproximationKind kind) { return approximation_row(kind).n
 std::vector<Approximation> detect_approximations(const mission::Mission& mission, const Models& models,
                                                  const SystemOutcome& outcome) {
   return Detector(mission, models, outcome).run();
+}
+
+std::vector<Approximation> detect_approximations_before_evaluation(const mission::Mission& mission,
+                                                                   const Models& models) {
+  // No races and no concurrent legs: races() and concurrent_legs() add nothing.
+  const SystemOutcome no_evaluation;
+  return Detector(mission, models, no_evaluation).run();
 }
 
 bool all_vouched(const std::vector<Approximation>& approximations) {

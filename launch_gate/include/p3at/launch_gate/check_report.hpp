@@ -14,10 +14,12 @@ namespace p3at::gate {
 /// P(radius), P(joint) against the threshold, extra criteria, the predicted
 /// completion and each robot's prediction, every failed criterion, and the
 /// decision time. For a check that could not run: the decision and the error.
-/// Ends with a newline.
+/// For a mission refused before evaluation: the unvouched approximations,
+/// where each is, and no probabilities. Ends with a newline.
 std::string format_check(const CheckReport& report);
 
-/// `decision=GO p_time=.. p_radius=.. p_joint=.. threshold=.. tmax_s=.. rmax_m=.. hash=.. decision_ms=..`
+/// `decision=GO p_time=.. p_radius=.. p_joint=.. threshold=.. tmax_s=.. rmax_m=.. hash=.. decision_ms=..`;
+/// refused before evaluation: `decision=cannot-evaluate evaluated=false hash=.. unvouched=KINDS decision_ms=..`
 std::string check_fields(const CheckReport& report);
 
 /// `robot=.. decision=.. p_joint=.. threshold=.. hash=<first 16 digits>`

@@ -47,9 +47,12 @@ enum class CheckStatus {
   bad_input,   ///< the mission, models or a criteria file does not load (file:line:column in `error`)
   no_models,   ///< there is no models file: without models the gate cannot run
   cannot_run,  ///< the verifier could not evaluate this mission with these models
-  /// The probabilities say GO, but the mission has an approximation the model
-  /// does not vouch for (VerifyResult::approximations): not GO unless the
-  /// operator accepts (CheckRequest::accept_unvouched). A NO-GO stays no_go.
+  /// The mission has an approximation the model does not vouch for
+  /// (VerifyResult::approximations): not GO unless the operator accepts
+  /// (CheckRequest::accept_unvouched). One the mission file and models show by
+  /// themselves refuses it before any evaluation (CheckReport::
+  /// refused_before_evaluation); one only the evaluation finds (robots racing,
+  /// teammates driving near the path) refuses a GO, and a NO-GO stays no_go.
   cannot_evaluate,
 };
 /// "GO", "NO-GO", "bad-input", "no-models", "cannot-run", "cannot-evaluate"
@@ -66,7 +69,11 @@ struct CheckReport {
   verifier::VerifyResult result;  ///< the verifier's answer (go / no_go / cannot_evaluate), approximations located
   /// GO only because the operator accepted unvouched approximations.
   bool accepted_unvouched = false;
-  double verify_ms = 0.0;     ///< the verifier call alone (wall time)
+  /// cannot_evaluate without evaluating: the mission file and the models
+  /// already show an unvouched approximation, so no probability could make it
+  /// GO. `result` holds the approximations (located) and no probabilities.
+  bool refused_before_evaluation = false;
+  double verify_ms = 0.0;     ///< the verifier call alone, or the look before it that refused (wall time)
   double total_ms = 0.0;      ///< reading, hashing, parsing and verifying: the gate's decision time (wall time)
   /// The same as total_ms in CPU time of the calling thread: what the decision
   /// costs, unaffected by other processes competing for the CPU.

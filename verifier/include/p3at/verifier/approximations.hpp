@@ -41,6 +41,16 @@ struct Approximation {
 std::vector<Approximation> detect_approximations(const mission::Mission& mission, const Models& models,
                                                  const SystemOutcome& outcome);
 
+/// The approximations the mission file and the models show by themselves:
+/// every kind but robots-racing and teammates-moving-near-path, which only the
+/// evaluation finds (who races whom, which legs are driven at once). Each one
+/// is also in detect_approximations()' answer for any outcome, so a mission
+/// with an unvouched one here is not evaluable whatever the evaluation says:
+/// the launch gate refuses it in milliseconds instead of evaluating it first
+/// (a looped multi-robot mission can take minutes; docs/verifier.md, "Cost").
+std::vector<Approximation> detect_approximations_before_evaluation(const mission::Mission& mission,
+                                                                   const Models& models);
+
 /// True when every approximation is vouched for: the verifier's answer is
 /// within its validated bounds.
 bool all_vouched(const std::vector<Approximation>& approximations);
