@@ -107,6 +107,37 @@ std::optional<std::string> optional_string(const Json& doc, const std::string& k
   return it->get<std::string>();
 }
 
+/// A number under `key` if there is one (a document may predate the key).
+std::optional<double> optional_number(const Json& object, const std::string& key, const std::string& path) {
+  const auto it = object.find(key);
+  if (it == object.end() || it->is_null()) return std::nullopt;
+  return number(*it, join(path, key));
+}
+
+/// The document's `robots` array, if any: each robot's name and the figures both sides can give.
+std::vector<RobotSide> robots(const Json& doc) {
+  std::vector<RobotSide> out;
+  const auto it = doc.find("robots");
+  if (it == doc.end()) return out;
+  if (!it->is_array()) throw BadDocument("robots: expected an array");
+  for (std::size_t i = 0; i < it->size(); ++i) {
+    const std::string path = "robots[" + std::to_string(i) + "]";
+    const Json& robot = (*it)[i];
+    RobotSide r;
+    const Json& name = member(robot, "name", path);
+    if (!name.is_string()) throw BadDocument(path + ".name: expected a string");
+    r.name = name.get<std::string>();
+    r.p_radius = optional_number(robot, "p_radius", path);
+    if (r.p_radius && (*r.p_radius < 0.0 || *r.p_radius > 1.0 + 1e-9)) {
+      throw BadDocument(path + ".p_radius: expected a probability in [0, 1]");
+    }
+    r.dist_mean_m = optional_number(robot, "dist_mean_m", path);
+    r.dist_sd_m = optional_number(robot, "dist_sd_m", path);
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
 Side read_side(const Json& doc) {
   if (!doc.is_object())
     throw BadDocument("expected a JSON object (the output of `vipars verify --json` or `vipars validate --json`)");
@@ -175,6 +206,7 @@ Side read_side(const Json& doc) {
     s.p_joint_ci_low = matrix(grid, "p_joint_ci_low", nt, nr);
     s.p_joint_ci_high = matrix(grid, "p_joint_ci_high", nt, nr);
   }
+  s.robots = robots(doc);
   return s;
 }
 

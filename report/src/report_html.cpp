@@ -2,6 +2,7 @@
 
 #include <sodium.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -53,6 +54,32 @@ std::string point_row(const std::string& name, double v, double w, const Side& v
   }
   return "<tr><td>" + html_escape(name) + "</td><td class=num>" + format_fixed(v, 4) + "</td><td class=num>" + format_fixed(w, 4) +
          "</td><td class=num>" + ci + "</td><td class=num>" + format_fixed(std::abs(v - w), 4) + "</td></tr>\n";
+}
+
+std::string optional_cell(const std::optional<double>& x, int decimals) {
+  return "<td class=num>" + (x ? format_fixed(*x, decimals) : std::string("–")) + "</td>";
+}
+
+/// Each robot's probability of ending within Rmax and its final distance to
+/// its goal (mean, sd) on both sides, robots matched by name: which robot a
+/// radius error comes from, and whether it is the distance's level or its
+/// spread. Empty when either document has no robots.
+std::string robot_table(const Side& v, const Side& w) {
+  if (v.robots.empty() || w.robots.empty()) return "";
+  std::string s = "<h2>Per robot: its final distance to its goal</h2>\n<table>\n<tr><th>robot</th><th>P(r ≤ Rmax) "
+                  "verification</th><th>validation</th><th>mean distance (m) verification</th><th>validation</th>"
+                  "<th>sd (m) verification</th><th>validation</th><th>sd ratio</th></tr>\n";
+  for (const RobotSide& a : v.robots) {
+    const auto b = std::find_if(w.robots.begin(), w.robots.end(), [&a](const RobotSide& x) { return x.name == a.name; });
+    if (b == w.robots.end()) continue;
+    std::optional<double> ratio;
+    if (a.dist_sd_m && b->dist_sd_m && *b->dist_sd_m > 0.0) ratio = *a.dist_sd_m / *b->dist_sd_m;
+    s += "<tr><td>" + html_escape(a.name) + "</td>" + optional_cell(a.p_radius, 4) + optional_cell(b->p_radius, 4) +
+         optional_cell(a.dist_mean_m, 4) + optional_cell(b->dist_mean_m, 4) + optional_cell(a.dist_sd_m, 4) +
+         optional_cell(b->dist_sd_m, 4) + optional_cell(ratio, 2) + "</tr>\n";
+  }
+  return s + "</table>\n<p>The validation's distances are over all its runs (a run that did not finish counts "
+             "where its robot stood at the end).</p>\n";
 }
 
 std::string axis_text(const std::vector<double>& axis, const std::string& unit) {
@@ -152,6 +179,7 @@ std::string report_html(const HtmlInputs& in) {
   s += "</table>\n<p>Threshold " + format_general(v.threshold) + "; the verification's decision: <b>" +
        html_escape(v.decision.value_or("?")) + "</b>; the validation's P(success) " +
        (w.p_joint >= w.threshold ? "meets" : "is below") + " its threshold " + format_general(w.threshold) + ".</p>\n";
+  s += robot_table(v, w);
 
   s += "<h2>Verification error over the grid</h2>\n<p>Grid: Tmax " + axis_text(v.tmax, "s") + ", Rmax " +
        axis_text(v.rmax, "m") + ". Regions by the verification's probability: unsuccessful below " +

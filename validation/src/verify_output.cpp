@@ -94,7 +94,8 @@ nlohmann::json verify_json(const mission::Mission& mission, const verifier::Veri
   for (const verifier::RobotPrediction& p : r.robots) {
     robots.push_back({{"name", p.name}, {"p_radius", p.p_radius}, {"finish_mean_s", p.finish_mean_s},
                       {"finish_sd_s", p.finish_sd_s}, {"final_x_m", p.final_x_m}, {"final_y_m", p.final_y_m},
-                      {"final_sd_m", p.final_sd_m}, {"dist_mean_m", p.dist_mean_m}, {"p_blocked", p.p_blocked},
+                      {"final_sd_m", p.final_sd_m}, {"dist_mean_m", p.dist_mean_m}, {"dist_sd_m", p.dist_sd_m},
+                      {"p_blocked", p.p_blocked},
                       {"finishes", p.finishes}});
   }
   j["robots"] = robots;

@@ -120,6 +120,40 @@ TEST_CASE("build_report writes the data, scripts, errors.json and a page with ha
   fs::remove_all(dir);
 }
 
+TEST_CASE("the page compares each robot's final distance: level and spread, matched by name") {
+  nlohmann::json vj = p3at::test::verification_doc(), wj = p3at::test::validation_doc();
+  vj["robots"] = nlohmann::json::parse(R"([
+    {"name": "robot1", "p_radius": 0.9, "dist_mean_m": 0.2280, "dist_sd_m": 0.0152},
+    {"name": "robot2", "p_radius": 1.0, "dist_mean_m": 0.5}])");  // an older document: no dist_sd_m
+  wj["robots"] = nlohmann::json::parse(R"([
+    {"name": "robot2", "p_radius": 0.97, "dist_mean_m": 0.51, "dist_sd_m": 0.02},
+    {"name": "robot1", "p_radius": 0.95, "dist_mean_m": 0.2283, "dist_sd_m": 0.0065}])");
+  const std::string dir = scratch_dir("robots");
+  BuildOptions o;
+  o.out_dir = dir + "/out";
+  o.render = false;
+  o.title = "robots";
+  REQUIRE(build_report(side(vj, "v.json"), side(wj, "w.json"), o).ok());
+  const std::string html = read_file(o.out_dir + "/index.html");
+  CHECK(html.find("<h2>Per robot: its final distance to its goal</h2>") != std::string::npos);
+  // robot1's row: its own validation figures (not robot2's, listed first there) and the sd ratio.
+  CHECK(html.find("<tr><td>robot1</td><td class=num>0.9000</td><td class=num>0.9500</td><td class=num>0.2280</td>"
+                  "<td class=num>0.2283</td><td class=num>0.0152</td><td class=num>0.0065</td><td class=num>2.34</td></tr>") !=
+        std::string::npos);
+  CHECK(html.find("<tr><td>robot2</td><td class=num>1.0000</td><td class=num>0.9700</td><td class=num>0.5000</td>"
+                  "<td class=num>0.5100</td><td class=num>–</td><td class=num>0.0200</td><td class=num>–</td></tr>") !=
+        std::string::npos);
+  // Documents without robots (as the toy ones): no table.
+  REQUIRE(build_report(side(p3at::test::verification_doc(), "v.json"), side(p3at::test::validation_doc(), "w.json"), o).ok());
+  CHECK(read_file(o.out_dir + "/index.html").find("Per robot") == std::string::npos);
+  // A robot's figure that is not a number is an error naming it.
+  vj["robots"][0]["dist_sd_m"] = "wide";
+  const auto bad = side_from_json(vj, "v.json");
+  REQUIRE_FALSE(bad.ok());
+  CHECK(bad.error().message.find("v.json: robots[0].dist_sd_m: expected a number") == 0);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("build_report refuses before writing anything") {
   const std::string dir = scratch_dir("refuse");
   nlohmann::json wj = p3at::test::validation_doc();

@@ -72,6 +72,27 @@ double expected_distance(const SystemOutcome& o, std::size_t i, const Eigen::Vec
   return w > 0.0 ? sum / w : 0.0;
 }
 
+/// E|p - goal|^2 over the same mixture, exact (|mean - goal|^2 + trace(cov)
+/// per Gaussian): with expected_distance, the spread of the distance itself,
+/// which `vipars validate` reports as dist_sd_m. A position spread across the
+/// line to the goal barely moves the distance; one along it moves it fully.
+double expected_squared_distance(const SystemOutcome& o, std::size_t i, const Eigen::Vector2d& goal) {
+  const auto squared = [&goal](const Gaussian2& x) { return (x.mean - goal).squaredNorm() + std::max(0.0, x.cov.trace()); };
+  double w = 0.0, sum = 0.0;
+  for (const Branch& b : o.branches) {
+    const RobotOutcome& r = b.robots[i];
+    double e = 0.0;
+    if (r.final_components.empty()) {
+      e = squared(r.final_position);
+    } else {
+      for (std::size_t k = 0; k < r.final_components.size(); ++k) e += component_weight(r, k) * squared(r.final_components[k]);
+    }
+    sum += b.weight * e;
+    w += b.weight;
+  }
+  return w > 0.0 ? sum / w : 0.0;
+}
+
 /// The control cycle every robot shares (0 when they differ). Every event of
 /// the mission happens on a cycle tick (the executive checks its triggers once
 /// per cycle, message delays are seen in whole cycles), so the completion time
@@ -284,6 +305,7 @@ Result<VerifyResult> verify_outcome(const mission::Mission& mission, const Model
     rp.final_y_m = mean.y();
     rp.final_sd_m = std::sqrt(std::max(0.0, cov.trace() / 2.0));
     rp.dist_mean_m = expected_distance(o, i, goal);
+    rp.dist_sd_m = std::sqrt(std::max(0.0, expected_squared_distance(o, i, goal) - rp.dist_mean_m * rp.dist_mean_m));
     rp.finishes = w > 0.0;
     for (const BlockedRobot& b : r.blocked) {
       if (b.robot == i) rp.p_blocked += b.probability;

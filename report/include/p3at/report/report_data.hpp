@@ -22,6 +22,15 @@ struct Band {
 };
 
 /// One side of the comparison: the verification or the validation.
+/// One robot's figures as a document gives them (`robots`: verify's
+/// predictions, validate's empirical ones); each absent when the document
+/// (an older one) does not have it.
+struct RobotSide {
+  std::string name;
+  std::optional<double> p_radius;                   ///< P(this robot within Rmax)
+  std::optional<double> dist_mean_m, dist_sd_m;     ///< its true final distance to its goal
+};
+
 struct Side {
   std::string source;  ///< the file it came from (or a label), for messages
   std::string mission;
@@ -42,6 +51,7 @@ struct Side {
   std::vector<std::vector<std::string>> region;    ///< as the document says, possibly empty
   std::optional<Band> p_time_band, p_radius_band;  ///< validation only
   std::optional<std::vector<std::vector<double>>> p_joint_ci_low, p_joint_ci_high;  ///< validation only
+  std::vector<RobotSide> robots;  ///< per robot, in the mission's order (empty when the document has none)
 };
 
 /// Reads a document already parsed. `source` names it in messages.

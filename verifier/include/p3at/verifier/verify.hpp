@@ -53,6 +53,7 @@ struct RobotPrediction {
   double final_x_m = 0.0, final_y_m = 0.0;       ///< mean true final position
   double final_sd_m = 0.0;                       ///< sqrt(trace(cov)/2)
   double dist_mean_m = 0.0;                      ///< E|true final position - goal| (as vipars validate's)
+  double dist_sd_m = 0.0;                        ///< the sd of |true final position - goal| (as vipars validate's)
   double p_radius = 0.0;                         ///< P(r_i <= rmax)
   double p_blocked = 0.0;                        ///< P(it never reaches a final state)
   /// False when no evaluated branch has it finish: the figures above are then
