@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "engine/interruption.hpp"
 #include "engine/race.hpp"
@@ -77,6 +78,39 @@ TEST_CASE("interruption on a straight leg: the bins' positions have the closed f
   CHECK(mass == doctest::Approx(1.0).epsilon(1e-12));
   CHECK(mean == doctest::Approx(v * mu).epsilon(1e-6));
   CHECK(second - mean * mean == doctest::Approx(v * v * s * s).epsilon(1e-4));
+}
+
+TEST_CASE("the robots that get through: every path that got through, the stuck ones weighted by the share freed") {
+  // Four equally likely held paths, two of them pinned (stuck), the pinned
+  // ones standing still at x = 0.
+  LegTrajectory leg = straight_leg(0.2, 50, 4);
+  leg.stuck = {0, 1, 0, 1};
+  for (const std::size_t j : {1u, 3u}) {
+    for (TrajectoryPoint& p : leg.paths[j]) p.base.x_m = 0.0;
+  }
+  // No redraw frees anyone: only the paths that got through (trajectory_subset's).
+  auto none = trajectory_getting_through(leg, 0.0);
+  REQUIRE(none);
+  CHECK(none->paths.size() == 2);
+  CHECK(none->weights == std::vector<double>{0.5, 0.5});
+  // Half the pinned runs freed: a pinned path counts half as much as a free one.
+  auto half = trajectory_getting_through(leg, 0.5);
+  REQUIRE(half);
+  REQUIRE(half->paths.size() == 4);
+  CHECK(half->weight(0) == doctest::Approx(1.0 / 3.0));
+  CHECK(half->weight(1) == doctest::Approx(1.0 / 6.0));
+  CHECK(half->is_stuck(1));
+  // Where a recall after 4 s finds such a robot: the mean of x over the weights.
+  const auto bins = interruption_bins(*half, Mixture1::point(4.0), 1);
+  REQUIRE(bins.size() == 1);
+  CHECK(bins[0].base.x_m == doctest::Approx(0.8 * (2.0 / 3.0)));
+  CHECK(bins[0].base.x_m < interruption_bins(*none, Mixture1::point(4.0), 1)[0].base.x_m);
+  // All freed: every path as held. Out of range is clamped.
+  CHECK(trajectory_getting_through(leg, 1.0)->weights == std::vector<double>{0.25, 0.25, 0.25, 0.25});
+  CHECK(trajectory_getting_through(leg, 7.0)->weights == std::vector<double>{0.25, 0.25, 0.25, 0.25});
+  // Nothing got through and nothing is freed: nothing.
+  leg.stuck = {1, 1, 1, 1};
+  CHECK_FALSE(trajectory_getting_through(leg, 0.0));
 }
 
 TEST_CASE("interruption after a path's end finds the robot where the path ended") {

@@ -86,6 +86,24 @@ std::shared_ptr<const LegTrajectory> trajectory_subset(const LegTrajectory& leg,
   return out;
 }
 
+std::shared_ptr<const LegTrajectory> trajectory_getting_through(const LegTrajectory& leg, double escaped) {
+  const double scale = std::clamp(escaped, 0.0, 1.0);
+  auto out = std::make_shared<LegTrajectory>();
+  out->cycle_s = leg.cycle_s;
+  double total = 0.0;
+  for (std::size_t j = 0; j < leg.paths.size(); ++j) {
+    const double w = leg.weight(j) * (leg.is_stuck(j) ? scale : 1.0);
+    if (!(w > 0.0) || leg.paths[j].empty()) continue;
+    out->paths.push_back(leg.paths[j]);
+    out->weights.push_back(w);
+    out->stuck.push_back(leg.is_stuck(j) ? 1 : 0);
+    total += w;
+  }
+  if (out->paths.empty() || total <= 0.0) return nullptr;
+  for (double& w : out->weights) w /= total;
+  return out;
+}
+
 TrajectoryPoint pose_at(const LegTrajectory& leg, std::size_t path, double t_s) {
   const std::vector<TrajectoryPoint>& p = leg.paths.at(path);
   if (p.empty()) return {};

@@ -51,6 +51,14 @@ TrajectoryPoint pose_at(const LegTrajectory& leg, std::size_t path, double t_s);
 /// Null when no path of that kind was recorded.
 std::shared_ptr<const LegTrajectory> trajectory_subset(const LegTrajectory& leg, bool stuck);
 
+/// Where a robot that gets through is, when the NOISE is redrawn within the
+/// state: the held paths that got through, and the stuck ones with their
+/// weights times `escaped`, the share of their robots a redraw frees (a run
+/// whose first draw pins it stays on that path's way until a redraw lets it
+/// go), renormalised. `escaped` 0 is trajectory_subset(leg, false). Null when
+/// nothing is left.
+std::shared_ptr<const LegTrajectory> trajectory_getting_through(const LegTrajectory& leg, double escaped);
+
 /// Splits τ (seconds since the state's entry) into at most `max_bins` bins of
 /// equal probability (one when the robot hardly moves over τ's spread) and
 /// places the robot in each. Bins' probabilities sum to 1. Empty when the

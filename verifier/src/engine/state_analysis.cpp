@@ -695,11 +695,23 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   // The sequencer sends the paths that got through on with the exits and
   // the stuck ones to wait for the message (engine/interruption.hpp,
   // trajectory_subset): split once here, where the analysis is cached.
+  // Under a redrawn NOISE the trajectories are the held quadrature's, whose
+  // stuck share can be far above the redrawn one (`a.blocked`, the share that
+  // waits): a redraw frees most runs a held direction would pin. Those runs
+  // get through, but until then they are on the pinned paths' way, so the
+  // robots that get through are on every held path, a stuck one weighted by
+  // the share it frees. With the paths that got through alone, gen_7026's
+  // robot1 (NOISE 0.28, 5 of 8 held directions pinned by the walls, recalled
+  // after 4.5 s) was 9 cm too far along its leg with a third of the runs'
+  // spread (verify 7.264 +- 0.029 m from its goal, 400 runs 7.359 +- 0.090 m).
   if (trajectory) {
     const auto& stuck = trajectory->stuck;
     const bool any_stuck = std::any_of(stuck.begin(), stuck.end(), [](char c) { return c != 0; });
     const bool all_stuck = any_stuck && std::all_of(stuck.begin(), stuck.end(), [](char c) { return c != 0; });
-    a.trajectory = any_stuck && !all_stuck ? trajectory_subset(*trajectory, /*stuck=*/false) : trajectory;
+    double held_stuck = 0.0;
+    for (std::size_t j = 0; j < trajectory->paths.size(); ++j) held_stuck += trajectory->is_stuck(j) ? trajectory->weight(j) : 0.0;
+    const double escaped = held_stuck > 0.0 ? std::clamp((held_stuck - a.blocked) / held_stuck, 0.0, 1.0) : 0.0;
+    a.trajectory = any_stuck && !all_stuck ? trajectory_getting_through(*trajectory, escaped) : trajectory;
     if (any_stuck) a.stuck_trajectory = all_stuck ? trajectory : trajectory_subset(*trajectory, /*stuck=*/true);
   }
   if (ends->redraws == 0) {
