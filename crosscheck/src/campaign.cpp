@@ -113,6 +113,30 @@ std::vector<double> scaled(const std::vector<double>& axis, double f) {
 // A run's largest final distance when it completed, +inf when it did not: a
 // run cut off by its time budget (or aborted) has no final position, only the
 // place where it stood when it was stopped.
+/// Each robot's final distance on both sides (campaign.hpp, RobotDistance),
+/// from verify's result and the validation document's robots.
+std::vector<RobotDistance> robot_distances(const verifier::VerifyResult& verified, const nlohmann::ordered_json& validation,
+                                           std::uint64_t runs, std::uint64_t failed_runs) {
+  std::vector<RobotDistance> out;
+  const bool runs_whole = runs > 0 && static_cast<double>(failed_runs) < 0.01 * static_cast<double>(runs);
+  for (const verifier::RobotPrediction& p : verified.robots) {
+    RobotDistance d;
+    d.name = p.name;
+    d.verify_mean_m = p.dist_mean_m;
+    d.verify_sd_m = p.dist_sd_m;
+    if (validation.contains("robots")) {
+      for (const auto& w : validation["robots"]) {
+        if (w.value("name", std::string()) != p.name) continue;
+        d.validate_mean_m = w.value("dist_mean_m", 0.0);
+        d.validate_sd_m = w.value("dist_sd_m", 0.0);
+        d.comparable = p.finishes && p.p_blocked < 0.01 && runs_whole && d.validate_sd_m > 0.0;
+      }
+    }
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
 double final_distance_m(const team_sim::RunResult& run) {
   return run.success() ? team_sim::worst_distance_m(run) : std::numeric_limits<double>::infinity();
 }
@@ -402,6 +426,7 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
                                       " --tmax-range " + tax.range() + " --rmax-range " + rax.range() + " --json";
     wj["command"] = validate_cmd;
     write_text(folder / "validate.json", wj.dump(2) + "\n");
+    r.robot_distances = robot_distances(*verified, wj, r.runs, r.failed_runs);
 
     std::vector<std::vector<double>> vjoint = verified->grid->p_joint;
     std::vector<std::vector<ValidationPoint>> wjoint(tax.values.size());

@@ -29,20 +29,48 @@ Json error_json(const ErrorSummary& e) {
   return j;
 }
 
+/// The p-th percentile of `v` by nearest rank (v sorted, not empty).
+double nearest_rank(const std::vector<double>& v, double p) {
+  const std::size_t k = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(v.size())));
+  return v[std::clamp<std::size_t>(k, 1, v.size()) - 1];
+}
+
 MetricStats stats(std::vector<double> v, double bound) {
   MetricStats s;
   s.missions = v.size();
   if (v.empty()) return s;
   std::sort(v.begin(), v.end());
-  const auto rank = [&v](double p) {
-    const std::size_t k = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(v.size())));
-    return v[std::clamp<std::size_t>(k, 1, v.size()) - 1];
-  };
   s.worst = v.back();
-  s.p50 = rank(50);
-  s.p90 = rank(90);
-  s.p95 = rank(95);
+  s.p50 = nearest_rank(v, 50);
+  s.p90 = nearest_rank(v, 90);
+  s.p95 = nearest_rank(v, 95);
   s.within = static_cast<std::size_t>(std::count_if(v.begin(), v.end(), [bound](double x) { return x <= bound; }));
+  return s;
+}
+
+CampaignSummary::RobotDistances robot_distance_stats(const std::vector<MissionResult>& results) {
+  CampaignSummary::RobotDistances s;
+  std::vector<double> ratios, mean_errors;
+  for (const MissionResult& r : results) {
+    if (!r.error.empty()) continue;
+    for (const RobotDistance& d : r.robot_distances) {
+      if (!d.comparable) continue;
+      ratios.push_back(d.verify_sd_m / d.validate_sd_m);
+      mean_errors.push_back(std::abs(d.verify_mean_m - d.validate_mean_m));
+    }
+  }
+  s.robots = ratios.size();
+  if (ratios.empty()) return s;
+  std::sort(ratios.begin(), ratios.end());
+  std::sort(mean_errors.begin(), mean_errors.end());
+  s.sd_ratio_p10 = nearest_rank(ratios, 10);
+  s.sd_ratio_p50 = nearest_rank(ratios, 50);
+  s.sd_ratio_p90 = nearest_rank(ratios, 90);
+  s.narrower = static_cast<std::size_t>(std::count_if(ratios.begin(), ratios.end(), [](double x) { return x < 2.0 / 3.0; }));
+  s.wider = static_cast<std::size_t>(std::count_if(ratios.begin(), ratios.end(), [](double x) { return x > 1.5; }));
+  s.mean_error_p50_m = nearest_rank(mean_errors, 50);
+  s.mean_error_p90_m = nearest_rank(mean_errors, 90);
+  s.mean_error_worst_m = mean_errors.back();
   return s;
 }
 
@@ -94,6 +122,7 @@ CampaignSummary summarize(const std::vector<MissionResult>& results, const Bound
   s.joint_tolerant = stats(jt, b.joint);
   s.separation_strict = stats(ss, b.radius);
   s.separation_tolerant = stats(st, b.radius);
+  s.robot_distances = robot_distance_stats(results);
   return s;
 }
 
@@ -132,6 +161,13 @@ Json mission_result_json(const MissionResult& r) {
   } else {
     j["separation"] = nullptr;
   }
+  Json robots = Json::array();
+  for (const RobotDistance& d : r.robot_distances) {
+    robots.push_back({{"name", d.name}, {"verify_mean_m", d.verify_mean_m}, {"verify_sd_m", d.verify_sd_m},
+                      {"validate_mean_m", d.validate_mean_m}, {"validate_sd_m", d.validate_sd_m},
+                      {"comparable", d.comparable}});
+  }
+  j["robot_distances"] = robots;
   j["within_bounds_strict"] = r.error.empty() && r.score.within(Bounds{}, false);
   j["within_bounds_tolerant"] = r.error.empty() && r.score.within(Bounds{}, true);
   j["seconds"] = {{"calibrate", r.calibrate_s}, {"validate", r.validate_s}, {"verify", r.verify_s}};
@@ -197,6 +233,13 @@ MissionResult mission_result_from_json(const nlohmann::json& j) {
     sep.overconfident_points = j.at("separation").at("overconfident_points").get<std::size_t>();
     r.separation = sep;
   }
+  if (j.contains("robot_distances")) {  // absent in files written before it
+    for (const nlohmann::json& d : j.at("robot_distances")) {
+      r.robot_distances.push_back({d.at("name").get<std::string>(), number(d.at("verify_mean_m")),
+                                   number(d.at("verify_sd_m")), number(d.at("validate_mean_m")),
+                                   number(d.at("validate_sd_m")), d.at("comparable").get<bool>()});
+    }
+  }
   r.calibrate_s = number(j.at("seconds").at("calibrate"));
   r.validate_s = number(j.at("seconds").at("validate"));
   r.verify_s = number(j.at("seconds").at("verify"));
@@ -224,6 +267,13 @@ Json summary_json(const CampaignSummary& s, const Bounds& b) {
   j["separation"] = {{"strict", stats_json(s.separation_strict)}, {"tolerant", stats_json(s.separation_tolerant)},
                      {"overconfident_points", s.separation_overconfident_points},
                      {"overconfident_missions", s.separation_overconfident_missions}};
+  const CampaignSummary::RobotDistances& d = s.robot_distances;
+  j["robot_distances"] = {{"robots", d.robots},
+                          {"sd_ratio", {{"p10", d.sd_ratio_p10}, {"p50", d.sd_ratio_p50}, {"p90", d.sd_ratio_p90}}},
+                          {"narrower_than_two_thirds", d.narrower},
+                          {"wider_than_three_halves", d.wider},
+                          {"mean_error_m", {{"p50", d.mean_error_p50_m}, {"p90", d.mean_error_p90_m},
+                                            {"worst", d.mean_error_worst_m}}}};
   return j;
 }
 
@@ -270,6 +320,15 @@ std::string summary_text(const CampaignSummary& s, const Bounds& b) {
          std::to_string(s.overconfident_cells) + " on " + std::to_string(s.overconfident_missions) +
          " evaluable missions; " + std::to_string(s.overconfident_cells_not_evaluable) +
          " more on missions verify cannot evaluate\n";
+  const CampaignSummary::RobotDistances& d = s.robot_distances;
+  if (d.robots > 0) {
+    out += "final distance per robot (" + std::to_string(d.robots) +
+           " comparable robots): verify's sd / the runs' p10 " + format_fixed(d.sd_ratio_p10, 2) + ", median " +
+           format_fixed(d.sd_ratio_p50, 2) + ", p90 " + format_fixed(d.sd_ratio_p90, 2) + "; under 2/3 " +
+           std::to_string(d.narrower) + ", over 3/2 " + std::to_string(d.wider) + "; |mean difference| median " +
+           format_fixed(1000.0 * d.mean_error_p50_m, 1) + " mm, p90 " + format_fixed(1000.0 * d.mean_error_p90_m, 1) +
+           " mm, worst " + format_fixed(1000.0 * d.mean_error_worst_m, 1) + " mm\n";
+  }
   if (s.separation_strict.missions > 0) {
     out += "closest approach: P(no two robots ever within d), on the " + std::to_string(s.separation_strict.missions) +
            " missions whose runs come within 3 m\n";

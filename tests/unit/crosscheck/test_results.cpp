@@ -121,7 +121,7 @@ TEST_CASE("JSON: the keys a machine reads, in order") {
                                           "approximations", "calibration", "runs", "failed_runs", "tmax_range",
                                           "rmax_range", "criteria", "time", "radius", "joint",
                                           "overconfident_go_cells", "overconfident_worst", "separation",
-                                          "within_bounds_strict",
+                                          "robot_distances", "within_bounds_strict",
                                           "within_bounds_tolerant", "seconds", "folder", "reproduce"};
   CHECK(keys == expected);
   CHECK(j["time"]["strict"] == 0.02);
@@ -265,4 +265,46 @@ TEST_CASE("JSON: a mission's result reads back as written (missions.jsonl, --fro
   CHECK(back.reproduce == r.reproduce);
   CHECK(mission_result_json(back).dump() == mission_result_json(r).dump());
   CHECK_THROWS(mission_result_from_json(nlohmann::json::parse("{\"name\": \"x\"}")));
+}
+
+TEST_CASE("each robot's final distance: kept through JSON (older files have none), its spreads' ratios in the summary") {
+  // Five comparable robots whose verify spread is 0.5, 0.9, 1.0, 1.1 and 2.0
+  // times the runs', and two that are not comparable (blocked in verify, or
+  // failed runs): those never enter the ratios.
+  std::vector<MissionResult> rs{result("a", 0.01, 0.01, 0.01, 0), result("b", 0.01, 0.01, 0.01, 0)};
+  const double ratios[] = {0.5, 0.9, 1.0, 1.1, 2.0};
+  for (int k = 0; k < 5; ++k) {
+    rs[k < 3 ? 0 : 1].robot_distances.push_back(
+        {"robot" + std::to_string(k), 1.0 + 0.001 * k, 0.01 * ratios[k], 1.0, 0.01, true});
+  }
+  rs[1].robot_distances.push_back({"blocked", 9.0, 5.0, 1.0, 0.01, false});
+  const CampaignSummary s = summarize(rs, Bounds{});
+  CHECK(s.robot_distances.robots == 5);
+  CHECK(s.robot_distances.sd_ratio_p10 == doctest::Approx(0.5));
+  CHECK(s.robot_distances.sd_ratio_p50 == doctest::Approx(1.0));
+  CHECK(s.robot_distances.sd_ratio_p90 == doctest::Approx(2.0));
+  CHECK(s.robot_distances.narrower == 1);
+  CHECK(s.robot_distances.wider == 1);
+  CHECK(s.robot_distances.mean_error_p50_m == doctest::Approx(0.002));
+  CHECK(s.robot_distances.mean_error_worst_m == doctest::Approx(0.004));
+  const std::string text = summary_text(s, Bounds{});
+  CHECK(text.find("final distance per robot (5 comparable robots): verify's sd / the runs' p10 0.50, median 1.00, "
+                  "p90 2.00; under 2/3 1, over 3/2 1; |mean difference| median 2.0 mm, p90 4.0 mm, worst 4.0 mm\n") !=
+        std::string::npos);
+  const auto sj = summary_json(s, Bounds{});
+  CHECK(sj["robot_distances"]["robots"] == 5);
+  CHECK(sj["robot_distances"]["narrower_than_two_thirds"] == 1);
+  CHECK(sj["robot_distances"]["sd_ratio"]["p50"] == doctest::Approx(1.0));
+
+  const MissionResult back = mission_result_from_json(nlohmann::json::parse(mission_result_json(rs[1]).dump()));
+  REQUIRE(back.robot_distances.size() == 3);
+  CHECK(back.robot_distances[2].name == "blocked");
+  CHECK_FALSE(back.robot_distances[2].comparable);
+  CHECK(back.robot_distances[0].verify_sd_m == doctest::Approx(0.011));
+  // A file written before the key reads back without robots, and the summary says nothing of them.
+  nlohmann::json old = nlohmann::json::parse(mission_result_json(rs[0]).dump());
+  old.erase("robot_distances");
+  CHECK(mission_result_from_json(old).robot_distances.empty());
+  CHECK(summary_text(summarize({mission_result_from_json(old)}, Bounds{}), Bounds{}).find("final distance") ==
+        std::string::npos);
 }

@@ -63,6 +63,20 @@ struct CampaignOptions {
 /// runs stay valid while the verifier changes; the scored Tmax axis stops at it.
 double validation_timeout_s(double tmax_s);
 
+/// One robot's final distance to its goal, verify's prediction against the
+/// runs' (`vipars verify --json`'s and `vipars validate --json`'s robots):
+/// which robot a radius error comes from, and whether it is the distance's
+/// level or its spread.
+struct RobotDistance {
+  std::string name;
+  double verify_mean_m = 0.0, verify_sd_m = 0.0;
+  double validate_mean_m = 0.0, validate_sd_m = 0.0;
+  /// Both sides describe the same finished robot: verify has it finish with
+  /// under 1 % blocked mass, under 1 % of the runs failed, and the runs'
+  /// distance spreads (sd > 0). Only these enter the summary's ratios.
+  bool comparable = false;
+};
+
 struct MissionResult {
   std::string name, source;
   std::optional<std::uint64_t> generator_seed;
@@ -82,6 +96,7 @@ struct MissionResult {
   /// The closest-approach curve (separation_curve.hpp); absent for one robot,
   /// or when no run's robots came within 3 m of each other.
   std::optional<SeparationScore> separation;
+  std::vector<RobotDistance> robot_distances;  ///< per robot, in the mission's order (empty: not scored)
   double calibrate_s = 0.0, verify_s = 0.0, validate_s = 0.0;   ///< CPU-thread wall time of each step
   std::string folder;                    ///< where its files are ("" when not written)
   std::string reproduce;                 ///< one command that redoes this mission alone

@@ -33,6 +33,16 @@ struct CampaignSummary {
   /// The closest-approach curve, over the missions that have one.
   MetricStats separation_strict, separation_tolerant;
   std::size_t separation_overconfident_points = 0, separation_overconfident_missions = 0;
+  /// Each comparable robot's final distance (campaign.hpp, RobotDistance):
+  /// the ratio of verify's spread to the runs', by nearest rank, how many are
+  /// under 2/3 (too narrow: the side a wrong GO comes from) and over 3/2, and
+  /// |verify's mean - the runs'| (m).
+  struct RobotDistances {
+    std::size_t robots = 0;
+    double sd_ratio_p10 = 0.0, sd_ratio_p50 = 0.0, sd_ratio_p90 = 0.0;
+    std::size_t narrower = 0, wider = 0;
+    double mean_error_p50_m = 0.0, mean_error_p90_m = 0.0, mean_error_worst_m = 0.0;
+  } robot_distances;
 };
 
 CampaignSummary summarize(const std::vector<MissionResult>& results, const Bounds& bounds);
