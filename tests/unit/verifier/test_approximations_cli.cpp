@@ -2,8 +2,9 @@
 // binary): on the six kinds of mission of issue 12 (tests/data/honest/),
 // `vipars verify --json` lists the approximations each has, located in the
 // mission file; a mission whose probabilities say GO but whose model is not
-// vouched for is "cannot evaluate" (verify and gate exit 3), unless the
-// operator accepts it; blocked robots are said to be blocked, never
+// vouched for is "cannot evaluate" (verify and gate exit 3; the gate refuses
+// without evaluating when the mission file shows it), unless the operator
+// accepts it; blocked robots are said to be blocked, never
 // "done at 0.0 ± 0.0 s". About 3 s in all.
 #include <doctest/doctest.h>
 #include <sys/wait.h>
@@ -99,7 +100,39 @@ TEST_CASE("the table: one row per kind in enum order; vouched iff measured withi
   }
 }
 
-TEST_CASE("each of issue 12's six mission kinds lists its approximations, located in the mission file") {
+namespace {
+
+/// `vipars gate` refuses before evaluating exactly when the mission file
+/// shows an unvouched approximation (every kind but robots-racing and
+/// teammates-moving-near-path, which only the evaluation finds), and lists
+/// each one verify found there, at the same file:line:column. True when it
+/// refused before evaluating.
+bool gate_refused_before_evaluating(const std::string& mission, const nlohmann::json& verified) {
+  const std::set<std::string> found_by_evaluation{"robots-racing", "teammates-moving-near-path"};
+  const Run gate = run("gate " + honest(mission, "mission.yaml") + " --models " + honest(mission, "models.yaml"));
+  bool static_unvouched = false;
+  for (const auto& a : verified["approximations"]) {
+    if (found_by_evaluation.count(a.at("kind").get<std::string>()) == 1) continue;
+    static_unvouched = static_unvouched || !a.at("vouched").get<bool>();
+    const std::string line = std::string(a.at("vouched").get<bool>() ? "approximation (vouched) " : "UNVOUCHED approximation ") +
+                             a.at("kind").get<std::string>() + ": " + a.at("robot").get<std::string>();
+    CHECK_MESSAGE(gate.out.find(line) != std::string::npos, line);
+    CHECK_MESSAGE(gate.out.find(" at " + a.at("where").get<std::string>() + ": ") != std::string::npos, a.dump());
+  }
+  const bool early = gate.out.find("refused before evaluating") != std::string::npos;
+  CHECK(early == static_unvouched);
+  if (early) {
+    CHECK(gate.status == 3);
+  } else {
+    CHECK(gate.out.find("P(success) =") != std::string::npos);  // evaluated first
+  }
+  return early;
+}
+
+}  // namespace
+
+TEST_CASE("each of issue 12's six mission kinds lists its approximations, located in the mission file; the gate "
+          "refuses those whose file shows one before evaluating them") {
   struct Expect {
     const char* mission;
     std::vector<const char*> unvouched;  // at least these kinds, unvouched
@@ -112,6 +145,7 @@ TEST_CASE("each of issue 12's six mission kinds lists its approximations, locate
       {"meeting", {"teammates-moving-near-path"}},
       {"patrol_recall", {"message-interrupts-motion", "fsa-loop", "time-position-coupled"}},
   };
+  int refused_early = 0;
   for (const Expect& e : expected) {
     INFO(e.mission);
     const nlohmann::json j = verify_json(e.mission);
@@ -125,7 +159,9 @@ TEST_CASE("each of issue 12's six mission kinds lists its approximations, locate
     const double decided = j["p_joint_decided"].get<double>();
     if (decided >= j["threshold"].get<double>()) CHECK(decision == "cannot-evaluate");
     else CHECK(decision == "no-go");
+    refused_early += gate_refused_before_evaluating(e.mission, j) ? 1 : 0;
   }
+  CHECK(refused_early == 5);  // all but meeting (teammates driving near each other: found by the evaluation)
 }
 
 TEST_CASE("patrol recalled mid-leg: verify's P(success) says GO, but it cannot be evaluated; the gate refuses") {
@@ -165,39 +201,6 @@ TEST_CASE("patrol recalled mid-leg: verify's P(success) says GO, but it cannot b
   const std::string own = mission + " --models " + honest("patrol_recall", "models.yaml");
   CHECK(run("verify " + own).status == 1);
   CHECK(run("gate " + own + " --accept-unvouched").status == 1);
-}
-
-TEST_CASE("the gate refuses before evaluating exactly when the mission file shows an unvouched approximation") {
-  // On issue 12's six kinds of mission: every approximation the file shows by
-  // itself (all but robots-racing and teammates-moving-near-path, which only
-  // the evaluation finds) is among verify's, at the same place, and the gate
-  // lists it; a mission with none unvouched (meeting: teammates driving near
-  // each other) is evaluated first.
-  const std::set<std::string> found_by_evaluation{"robots-racing", "teammates-moving-near-path"};
-  int refused_early = 0;
-  for (const char* name : {"five_legs", "two_speeds", "chain_of_four", "z_overwatch", "meeting", "patrol_recall"}) {
-    INFO(name);
-    const nlohmann::json j = verify_json(name);
-    const Run gate = run("gate " + honest(name, "mission.yaml") + " --models " + honest(name, "models.yaml"));
-    bool static_unvouched = false;
-    for (const auto& a : j["approximations"]) {
-      if (found_by_evaluation.count(a.at("kind").get<std::string>()) == 1) continue;
-      static_unvouched = static_unvouched || !a.at("vouched").get<bool>();
-      const std::string line = std::string(a.at("vouched").get<bool>() ? "approximation (vouched) " : "UNVOUCHED approximation ") +
-                               a.at("kind").get<std::string>() + ": " + a.at("robot").get<std::string>();
-      CHECK_MESSAGE(gate.out.find(line) != std::string::npos, line);
-      CHECK_MESSAGE(gate.out.find(" at " + a.at("where").get<std::string>() + ": ") != std::string::npos, a.dump());
-    }
-    const bool early = gate.out.find("refused before evaluating") != std::string::npos;
-    CHECK(early == static_unvouched);
-    if (early) {
-      CHECK(gate.status == 3);
-      ++refused_early;
-    } else {
-      CHECK(gate.out.find("P(success) =") != std::string::npos);
-    }
-  }
-  CHECK(refused_early == 5);  // all but meeting
 }
 
 TEST_CASE("shipped examples whose kinds are vouched keep their GO / NO-GO") {

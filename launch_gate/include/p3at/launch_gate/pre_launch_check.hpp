@@ -80,7 +80,8 @@ struct CheckReport {
   double total_cpu_ms = 0.0;
 
   bool verified() const { return status == CheckStatus::go || status == CheckStatus::no_go; }
-  /// The verifier answered (result is filled): verified, or cannot_evaluate.
+  /// The verifier answered: verified, or cannot_evaluate. `result` holds the
+  /// approximations; its probabilities only when !refused_before_evaluation.
   bool evaluated() const { return verified() || status == CheckStatus::cannot_evaluate; }
 };
 
