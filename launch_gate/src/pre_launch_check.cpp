@@ -121,14 +121,10 @@ CheckReport pre_launch_check(const CheckRequest& request, const VerdictSource& s
     report.verify_ms = ms_since(verify_start);
     report.refused_before_evaluation = true;
     verifier::locate_in_mission_file(report.result, *mission_bytes, request.mission_path);
-    report.status = CheckStatus::cannot_evaluate;
-    report.error = "the model does not vouch for this mission (" +
-                   verifier::unvouched_kinds(report.result.approximations) +
-                   "): refused before evaluating it, its P(success) could not be trusted; accept it explicitly "
-                   "(--accept-unvouched) to have it evaluated and launched if the probabilities say GO";
-    report.total_ms = ms_since(start);
-    report.total_cpu_ms = thread_cpu_ms() - start_cpu_ms;
-    return report;
+    return fail(CheckStatus::cannot_evaluate,
+                "the model does not vouch for this mission (" + verifier::unvouched_kinds(report.result.approximations) +
+                    "): refused before evaluating it, its P(success) could not be trusted; accept it explicitly "
+                    "(--accept-unvouched) to have it evaluated and launched if the probabilities say GO");
   }
   Result<verifier::VerifyResult> verdict =
       source(*report.mission, *report.models, request.options, request.criteria_files, nullptr);

@@ -50,21 +50,19 @@ double expected_distance(const Gaussian2& x, const Eigen::Vector2d& goal) {
   return sum * h / 3.0;
 }
 
-/// E|p - goal| of robot i's true final position over the branches (each a
-/// mixture when it has final_components). The quantity `vipars validate`
-/// reports as dist_mean_m, so the two compare directly; it runs at every gate
-/// decision, so it stays cheap.
-double expected_distance(const SystemOutcome& o, std::size_t i, const Eigen::Vector2d& goal) {
+/// The average of f over robot i's true final position: each branch's final
+/// Gaussian, or its mixture when it has final_components, weighted by the
+/// branches' weights. Runs at every gate decision, so it stays cheap.
+template <typename F>
+double final_position_average(const SystemOutcome& o, std::size_t i, const F& f) {
   double w = 0.0, sum = 0.0;
   for (const Branch& b : o.branches) {
     const RobotOutcome& r = b.robots[i];
     double e = 0.0;
     if (r.final_components.empty()) {
-      e = expected_distance(r.final_position, goal);
+      e = f(r.final_position);
     } else {
-      for (std::size_t k = 0; k < r.final_components.size(); ++k) {
-        e += component_weight(r, k) * expected_distance(r.final_components[k], goal);
-      }
+      for (std::size_t k = 0; k < r.final_components.size(); ++k) e += component_weight(r, k) * f(r.final_components[k]);
     }
     sum += b.weight * e;
     w += b.weight;
@@ -72,25 +70,20 @@ double expected_distance(const SystemOutcome& o, std::size_t i, const Eigen::Vec
   return w > 0.0 ? sum / w : 0.0;
 }
 
+/// E|p - goal| of robot i's true final position: the quantity `vipars
+/// validate` reports as dist_mean_m, so the two compare directly.
+double expected_distance(const SystemOutcome& o, std::size_t i, const Eigen::Vector2d& goal) {
+  return final_position_average(o, i, [&goal](const Gaussian2& x) { return expected_distance(x, goal); });
+}
+
 /// E|p - goal|^2 over the same mixture, exact (|mean - goal|^2 + trace(cov)
 /// per Gaussian): with expected_distance, the spread of the distance itself,
 /// which `vipars validate` reports as dist_sd_m. A position spread across the
 /// line to the goal barely moves the distance; one along it moves it fully.
 double expected_squared_distance(const SystemOutcome& o, std::size_t i, const Eigen::Vector2d& goal) {
-  const auto squared = [&goal](const Gaussian2& x) { return (x.mean - goal).squaredNorm() + std::max(0.0, x.cov.trace()); };
-  double w = 0.0, sum = 0.0;
-  for (const Branch& b : o.branches) {
-    const RobotOutcome& r = b.robots[i];
-    double e = 0.0;
-    if (r.final_components.empty()) {
-      e = squared(r.final_position);
-    } else {
-      for (std::size_t k = 0; k < r.final_components.size(); ++k) e += component_weight(r, k) * squared(r.final_components[k]);
-    }
-    sum += b.weight * e;
-    w += b.weight;
-  }
-  return w > 0.0 ? sum / w : 0.0;
+  return final_position_average(o, i, [&goal](const Gaussian2& x) {
+    return (x.mean - goal).squaredNorm() + std::max(0.0, x.cov.trace());
+  });
 }
 
 /// The control cycle every robot shares (0 when they differ). Every event of
