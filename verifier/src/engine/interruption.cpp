@@ -6,6 +6,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "engine/trajectory_pace.hpp"
 #include "p3at/executive/frames.hpp"
 
 namespace p3at::verifier::engine {
@@ -73,6 +74,7 @@ std::vector<Eigen::Vector2d> equal_weight_offsets(const std::vector<Eigen::Vecto
 std::shared_ptr<const LegTrajectory> trajectory_subset(const LegTrajectory& leg, bool stuck) {
   auto out = std::make_shared<LegTrajectory>();
   out->cycle_s = leg.cycle_s;
+  out->path_time_s = leg.path_time_s;
   double total = 0.0;
   for (std::size_t j = 0; j < leg.paths.size(); ++j) {
     if (leg.is_stuck(j) != stuck || leg.paths[j].empty()) continue;
@@ -90,6 +92,7 @@ std::shared_ptr<const LegTrajectory> trajectory_getting_through(const LegTraject
   const double scale = std::clamp(escaped, 0.0, 1.0);
   auto out = std::make_shared<LegTrajectory>();
   out->cycle_s = leg.cycle_s;
+  out->path_time_s = leg.path_time_s;
   double total = 0.0;
   for (std::size_t j = 0; j < leg.paths.size(); ++j) {
     const double w = leg.weight(j) * (leg.is_stuck(j) ? scale : 1.0);
@@ -107,7 +110,7 @@ std::shared_ptr<const LegTrajectory> trajectory_getting_through(const LegTraject
 TrajectoryPoint pose_at(const LegTrajectory& leg, std::size_t path, double t_s) {
   const std::vector<TrajectoryPoint>& p = leg.paths.at(path);
   if (p.empty()) return {};
-  const double n = std::max(0.0, t_s / leg.cycle_s);
+  const double n = std::max(0.0, leg.path_time(t_s) / leg.cycle_s);
   const double last = static_cast<double>(p.size() - 1);
   if (n >= last) return p.back();
   const std::size_t i = static_cast<std::size_t>(std::floor(n));
@@ -234,6 +237,18 @@ std::vector<InterruptionBin> interruption_bins(const LegTrajectory& leg, const M
       bin.weights.push_back(ws[j]);
       bin.headings.push_back(headings[j]);
       bin.spread += ws[j] * (points[j] - mean_xy) * (points[j] - mean_xy).transpose();
+    }
+    if (!leg.redrawn_cov_m2.empty()) {
+      // Held paths under a redrawn NOISE: their offsets at the redrawn
+      // spread (leg_trajectory.hpp); what the points cannot show of it (an
+      // axis they do not spread along) joins the spread within the bin.
+      const Eigen::Matrix2d target = leg.redrawn_cov(bin.tau_mean_s);
+      bin.path_offsets = offsets_at_spread(bin.path_offsets, bin.spread, target);
+      bin.spread.setZero();
+      for (std::size_t j = 0; j < paths; ++j) bin.spread += ws[j] * bin.path_offsets[j] * bin.path_offsets[j].transpose();
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> deficit(target - bin.spread);
+      bin.within += deficit.eigenvectors() * deficit.eigenvalues().cwiseMax(0.0).asDiagonal() *
+                    deficit.eigenvectors().transpose();
     }
     bin.offsets = equal_weight_offsets(bin.path_offsets, bin.weights);
     out.push_back(std::move(bin));

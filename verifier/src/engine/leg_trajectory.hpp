@@ -8,6 +8,8 @@
 #include <cstddef>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "engine/base_motion.hpp"
 #include "engine/error_state.hpp"
 
@@ -35,6 +37,26 @@ struct LegTrajectory {
   double weight(std::size_t j) const {
     return j < weights.size() ? weights[j] : 1.0 / static_cast<double>(paths.empty() ? 1 : paths.size());
   }
+  /// Under a redrawn NOISE the paths are the held quadrature's (one direction
+  /// each for the whole state), which run ahead of the redrawn robot: the
+  /// time on the paths at each whole second of the state's time, so that
+  /// their mean keeps the redrawn quadrature's pace (engine/trajectory_pace.hpp).
+  /// Empty: the paths' own time.
+  std::vector<double> path_time_s;
+  /// The time on the paths for `t_s` seconds in the state.
+  double path_time(double t_s) const;
+  /// With `path_time_s`: the redrawn quadrature's spread of positions
+  /// (odometric, m^2) at each whole second of the state's time. A held
+  /// direction pushes its path aside for the whole state and the held paths
+  /// fan out far wider than a robot whose NOISE keeps turning: an
+  /// interruption's places are the held paths' offsets brought to this
+  /// spread (interruption_bins). Not carried into a subset of the paths
+  /// (trajectory_subset, trajectory_getting_through): the redrawn spread is
+  /// that of every path together.
+  std::vector<Eigen::Matrix2d> redrawn_cov_m2;
+  /// That spread after `t_s` seconds in the state (interpolated; the last
+  /// second's beyond it). Requires a non-empty `redrawn_cov_m2`.
+  Eigen::Matrix2d redrawn_cov(double t_s) const;
 };
 
 }  // namespace p3at::verifier::engine

@@ -15,6 +15,7 @@
 
 #include "engine/error_state.hpp"
 #include "engine/interruption.hpp"
+#include "engine/moved_start.hpp"
 #include "engine/moving_bodies.hpp"
 #include "engine/race.hpp"
 #include "engine/separations.hpp"
@@ -239,8 +240,15 @@ struct Track {
   std::size_t interruption_bin = 0;
   /// Entries per state in this branch: a loop's laps (the budget cuts them off).
   std::vector<std::size_t> visits;
-  /// The motion within that bin, a position spread on top of `spread`.
+  /// The motion within that bin, a position spread on top of `spread`; and
+  /// the spread between the starts of branches merged after the current
+  /// state's analysis was made (merge_into), which the analysis's paths do
+  /// not carry.
   Eigen::Matrix2d extra_cov = Eigen::Matrix2d::Zero();
+  /// How far `base` has moved from where the current state's analysis began:
+  /// branches that entered the state from different places were merged and
+  /// one analysis goes on for all (engine/moved_start.hpp). Zero on entry.
+  Eigen::Vector2d moved_start = Eigen::Vector2d::Zero();
   /// Where it is predicted to be over mission time (separation criteria).
   Timeline timeline;
 
@@ -444,6 +452,7 @@ class Sequencer {
       ctx.model = robot_models_[i];
       ctx.models = &models_;
       track.analysis = analyze_final(ctx, state, track.base, track.error);
+      track.moved_start.setZero();
       outcome_.work_cycles += track.analysis.cycles_simulated;
       const double dx = track.analysis.end.x_m - track.base.x_m, dy = track.analysis.end.y_m - track.base.y_m;
       transport(track.error_mix, dx, dy);
@@ -461,6 +470,7 @@ class Sequencer {
     ctx.obstacles = obstacles_near(b, i, state);
     ctx.movers = moving_teammates(b, i, state);
     track.analysis = cached_analysis(ctx, i, state, track);
+    track.moved_start.setZero();
     outcome_.subsystems += 1;
     note_path(b, i);
 
@@ -1124,17 +1134,20 @@ class Sequencer {
       return;
     }
     t.interruption_bin = 0;
+    // Where the state ends, moved with a start merged after its analysis.
+    const BaseState end = moved_with_start(t, i, t.analysis.end);
     // The earlier paths' errors ride along this state's displacement; this
     // state's own paths add theirs (independent draws of NOISE).
-    transport(t.error_mix, t.analysis.end.x_m - t.base.x_m, t.analysis.end.y_m - t.base.y_m);
-    transport(t.error_mix_before_leg, t.analysis.end.x_m - t.base.x_m, t.analysis.end.y_m - t.base.y_m);
+    transport(t.error_mix, end.x_m - t.base.x_m, end.y_m - t.base.y_m);
+    transport(t.error_mix_before_leg, end.x_m - t.base.x_m, end.y_m - t.base.y_m);
     if (t.analysis.sets_spread) {
       t.error_mix_before_leg = t.error_mix;
       t.leg_paths_cov = explained_cov(t.analysis.error_paths).topLeftCorner<2, 2>();
     }
     t.error_mix = convolve(t.error_mix, t.analysis.error_paths, kMaxErrorComponents);
-    t.base = t.analysis.end;
     t.start_points = t.analysis.end_points;
+    for (StartPoint& p : t.start_points) p.q = moved_with_start(t, i, p.q);
+    t.base = end;
     t.error = t.analysis.error;
     if (t.analysis.sets_spread) {
       t.spread = t.analysis.end_spread;
@@ -1184,19 +1197,25 @@ class Sequencer {
       }
       Track& ti = child.robots[i];
       ti.interruption_bin = bins.size() > 1 ? k_bin + 1 : 0;
+      // The bin's place, moved with a start merged after the analysis; the
+      // spread around the start that the analysis's paths do not carry (in
+      // extra_cov: a merge's, an earlier interruption's) is carried by the
+      // share of the leg still ahead, as the start itself is.
+      const BaseState place = moved_with_start(ti, i, bin.base);
+      const double ahead = share_ahead(ti, i, bin.base);
       // Only the earlier paths' errors are kept apart here; the interrupted
       // leg's own spread between paths is in bin.error's covariance.
-      transport(ti.error_mix, bin.base.x_m - ti.base.x_m, bin.base.y_m - ti.base.y_m);
+      transport(ti.error_mix, place.x_m - ti.base.x_m, place.y_m - ti.base.y_m);
       ti.error_mix_before_leg = ti.error_mix;  // the bin's offsets are odometric only
       ti.leg_paths_cov.setZero();
       ti.spread_points_within.setZero();
-      ti.base = bin.base;
+      ti.base = place;
       ti.start_points.clear();
       {
         std::vector<StartPoint> points;
         std::vector<double> keys;
         for (std::size_t j = 0; j < bin.path_offsets.size(); ++j) {
-          BaseState q = bin.base;
+          BaseState q = place;
           q.x_m += bin.path_offsets[j].x();
           q.y_m += bin.path_offsets[j].y();
           q.theta_rad = bin.headings[j];
@@ -1209,10 +1228,31 @@ class Sequencer {
       ti.spread = bin.spread;
       ti.spread_points = bin.offsets;
       ti.spread_delays.clear();  // where a message stopped it, not when its paths arrived
-      ti.extra_cov = bin.within;
+      ti.extra_cov = bin.within + ahead * ahead * ti.extra_cov;
       ti.timeline.note(child.clock.mean(), ti.true_position(), kSeparationWindowS);
       enter(std::move(child), i, to, out);
     }
+  }
+
+  /// The share of robot i's current state still ahead of a pose of its
+  /// analysis (engine/moved_start.hpp): how much of a start merged after
+  /// the analysis the pose moves with.
+  double share_ahead(const Track& t, std::size_t i, const BaseState& pose) const {
+    std::optional<Eigen::Vector2d> goal;
+    if (const auto* go = std::get_if<mission::GoToGuardedParams>(&mission_.robots[i].states[t.state].behavior)) {
+      goal = Eigen::Vector2d(go->goal.x_m, go->goal.y_m);
+    }
+    const Eigen::Vector2d analysis_start = Eigen::Vector2d(t.base.x_m, t.base.y_m) - t.moved_start;
+    return share_still_ahead(analysis_start, goal, Eigen::Vector2d(pose.x_m, pose.y_m));
+  }
+
+  /// A pose of robot i's current analysis, moved with its merged start.
+  BaseState moved_with_start(const Track& t, std::size_t i, BaseState pose) const {
+    if (t.moved_start.isZero()) return pose;
+    const double share = share_ahead(t, i, pose);
+    pose.x_m += share * t.moved_start.x();
+    pose.y_m += share * t.moved_start.y();
+    return pose;
   }
 
   void finish(BranchState b) {
@@ -1288,16 +1328,18 @@ class Sequencer {
   /// Branches in the same discrete configuration become one (moment-matched);
   /// then only the heaviest max_branches go on.
   std::vector<BranchState> merge_and_prune(std::vector<BranchState> branches) {
-    std::map<std::string, std::size_t> by_key;
+    std::map<std::string, std::vector<std::size_t>> by_key;
     std::vector<BranchState> merged;
     for (BranchState& b : branches) {
-      const std::string key = configuration_key(b);
-      const auto it = by_key.find(key);
-      if (it == by_key.end()) {
-        by_key.emplace(key, merged.size());
+      std::vector<std::size_t>& same = by_key[configuration_key(b)];
+      // Into the first branch of the configuration whose robots are where
+      // this one's are (engine/moved_start.hpp, close_enough_to_merge).
+      const auto into = std::find_if(same.begin(), same.end(), [&](std::size_t m) { return same_places(merged[m], b); });
+      if (into == same.end()) {
+        same.push_back(merged.size());
         merged.push_back(std::move(b));
       } else {
-        merge_into(merged[it->second], b);
+        merge_into(merged[*into], b);
       }
     }
     std::stable_sort(merged.begin(), merged.end(),
@@ -1308,6 +1350,15 @@ class Sequencer {
       merged.pop_back();
     }
     return merged;
+  }
+
+  /// Whether every robot of a and b is close enough to merge its places.
+  static bool same_places(const BranchState& a, const BranchState& b) {
+    for (std::size_t i = 0; i < a.robots.size(); ++i) {
+      const Gaussian2 pa = a.robots[i].true_position(), pb = b.robots[i].true_position();
+      if (!close_enough_to_merge(pa.mean, pa.cov, pb.mean, pb.cov)) return false;
+    }
+    return true;
   }
 
   std::string configuration_key(const BranchState& b) const {
@@ -1392,6 +1443,28 @@ class Sequencer {
       blend_pointwise(ta.spread_delays, tb.spread_delays);
       blend_pointwise(ta.rest_delays, tb.rest_delays);
       ta.rest_points_within = (wa * ta.rest_points_within + wb * tb.rest_points_within) / w;
+      ta.extra_cov = (wa * ta.extra_cov + wb * tb.extra_cov) / w;
+      // Entered (or left) from different places: an interruption's bins once
+      // the robot's next event has made them one configuration, teammates
+      // that met it in different orders. The merged start is the mean of the
+      // two; a's analysis goes on, moved with it (moved_start), and the
+      // spread between the two starts is kept as a position spread of its own
+      // (extra_cov), which a leg to a goal gives up as it gets there. Keeping
+      // a's start alone put gen_7093's robot1, recalled within a second of
+      // starting, where the earliest recall left it: 5 mm from its start with
+      // a spread of 0.6 mm, where the runs end 54 +- 44 mm from it.
+      const Eigen::Vector2d from_a(ta.base.x_m, ta.base.y_m), from_b(tb.base.x_m, tb.base.y_m);
+      const Eigen::Vector2d apart = from_b - from_a;
+      if (!apart.isZero()) {
+        const Eigen::Vector2d mean = from_a + (wb / w) * apart;
+        ta.extra_cov += (wa * wb / (w * w)) * apart * apart.transpose();
+        ta.moved_start += mean - from_a;
+        ta.base.x_m = mean.x();
+        ta.base.y_m = mean.y();
+      }
+      ta.base.theta_rad += (wb / w) * std::remainder(tb.base.theta_rad - ta.base.theta_rad, 2.0 * 3.14159265358979323846);
+      ta.base.trans_mps = (wa * ta.base.trans_mps + wb * tb.base.trans_mps) / w;
+      ta.base.rot_radps = (wa * ta.base.rot_radps + wb * tb.base.rot_radps) / w;
     }
     for (std::size_t m = 0; m < a.delivery.size(); ++m) {
       if (a.delivery[m] && b.delivery[m]) a.delivery[m] = blend(*a.delivery[m], wa, *b.delivery[m], wb, k());

@@ -16,6 +16,7 @@
 #include "engine/interruption.hpp"
 #include "engine/next_turn.hpp"
 #include "engine/noise_segments.hpp"
+#include "engine/trajectory_pace.hpp"
 #include "engine/trigger_phase.hpp"
 
 namespace p3at::verifier::engine {
@@ -691,6 +692,11 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
     held = noise_quadrature(stepper, entries, 0, directions, directions, directions, cap, trajectory.get());
     a.cycles_simulated += held.cycles_simulated;
     if (draw_spans_approach && held.stuck <= 0.0 && !redrawn_on_approach(held, persistence, approach_cycles)) ends = &held;
+    // The held paths at the redrawn robot's pace (engine/trajectory_pace.hpp).
+    if (trajectory) {
+      trajectory->path_time_s = path_times_at_pace(*trajectory, quad.mean_path);
+      trajectory->redrawn_cov_m2 = redrawn_spreads(quad.mean_path, trajectory->path_time_s.size());
+    }
   }
   // The sequencer sends the paths that got through on with the exits and
   // the stuck ones to wait for the message (engine/interruption.hpp,
