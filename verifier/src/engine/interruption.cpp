@@ -6,6 +6,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "engine/error_mixture.hpp"
 #include "engine/trajectory_pace.hpp"
 #include "p3at/executive/frames.hpp"
 
@@ -246,9 +247,7 @@ std::vector<InterruptionBin> interruption_bins(const LegTrajectory& leg, const M
       bin.path_offsets = offsets_at_spread(bin.path_offsets, bin.spread, target);
       bin.spread.setZero();
       for (std::size_t j = 0; j < paths; ++j) bin.spread += ws[j] * bin.path_offsets[j] * bin.path_offsets[j].transpose();
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> deficit(target - bin.spread);
-      bin.within += deficit.eigenvectors() * deficit.eigenvalues().cwiseMax(0.0).asDiagonal() *
-                    deficit.eigenvectors().transpose();
+      bin.within += floored_psd(target - bin.spread);
     }
     bin.offsets = equal_weight_offsets(bin.path_offsets, bin.weights);
     out.push_back(std::move(bin));
