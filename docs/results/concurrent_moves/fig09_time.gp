@@ -10,16 +10,16 @@ set grid front linecolor rgb "#bbbbbb"
 set key outside below center horizontal
 set bmargin 6
 set tics out
-set object 1 rectangle from 105, graph 0 to 117.25, graph 1 behind fillcolor rgb "#dddddd" fillstyle solid 1.0 noborder
-set label 1 "High confidence\n(unsuccessful)" at 111.125, graph 0.93 center front
-set object 2 rectangle from 117.25, graph 0 to 152.75, graph 1 behind fillcolor rgb "#fff4c2" fillstyle solid 1.0 noborder
-set label 2 "Uncertain" at 135, graph 0.93 center front
-set object 3 rectangle from 152.75, graph 0 to 165, graph 1 behind fillcolor rgb "#d9f0d3" fillstyle solid 1.0 noborder
-set label 3 "High confidence\n(successful)" at 158.875, graph 0.93 center front
+set object 1 rectangle from 105, graph 0 to 116.25, graph 1 behind fillcolor rgb "#dddddd" fillstyle solid 1.0 noborder
+set label 1 "High confidence\n(unsuccessful)" at 110.625, graph 0.93 center front
+set object 2 rectangle from 116.25, graph 0 to 152.25, graph 1 behind fillcolor rgb "#fff4c2" fillstyle solid 1.0 noborder
+set label 2 "Uncertain" at 134.25, graph 0.93 center front
+set object 3 rectangle from 152.25, graph 0 to 165, graph 1 behind fillcolor rgb "#d9f0d3" fillstyle solid 1.0 noborder
+set label 3 "High confidence\n(successful)" at 158.625, graph 0.93 center front
 set arrow 90 from 140, graph 0 to 140, graph 1 nohead back dashtype 2 linecolor rgb "#555555"
 set label 90 "criterion 140 s" at 140, graph 0.02 left offset 0.5,0.6 textcolor rgb "#555555"
-set arrow 91 from 119.5, 0.15820852592013715 to 119.5, 0.1898 nohead front linecolor rgb "black" linewidth 3
-set label 91 "max |verify − validate| = 0.032\nat 119.5 s" at 119.5, 0.17400426296006857 left offset 1,0 front
+set arrow 91 from 117, 0.072715122886354108 to 117, 0.046199999999999998 nohead front linecolor rgb "black" linewidth 3
+set label 91 "max |verify − validate| = 0.027\nat 117 s" at 117, 0.059457561443177057 left offset 1,0 front
 set terminal pngcairo size 1000,620 noenhanced font "DejaVu Sans,11"
 set output "fig09_time.png"
 plot "fig09_time.dat" using 1:4:5 with filledcurves fillcolor rgb "#fdb863" fillstyle transparent solid 0.55 noborder title "validation 95 % Wilson interval", \

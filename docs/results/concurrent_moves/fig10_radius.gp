@@ -12,14 +12,14 @@ set bmargin 6
 set tics out
 set object 1 rectangle from 0.69999999999999996, graph 0 to 0.96499999999999997, graph 1 behind fillcolor rgb "#dddddd" fillstyle solid 1.0 noborder
 set label 1 "High confidence\n(unsuccessful)" at 0.83250000000000002, graph 0.93 center front
-set object 2 rectangle from 0.96499999999999997, graph 0 to 1.0750000000000002, graph 1 behind fillcolor rgb "#fff4c2" fillstyle solid 1.0 noborder
-set label 2 "Uncertain" at 1.02, graph 0.93 center front
-set object 3 rectangle from 1.0750000000000002, graph 0 to 1.3, graph 1 behind fillcolor rgb "#d9f0d3" fillstyle solid 1.0 noborder
-set label 3 "High confidence\n(successful)" at 1.1875, graph 0.93 center front
+set object 2 rectangle from 0.96499999999999997, graph 0 to 1.0550000000000002, graph 1 behind fillcolor rgb "#fff4c2" fillstyle solid 1.0 noborder
+set label 2 "Uncertain" at 1.01, graph 0.93 center front
+set object 3 rectangle from 1.0550000000000002, graph 0 to 1.3, graph 1 behind fillcolor rgb "#d9f0d3" fillstyle solid 1.0 noborder
+set label 3 "High confidence\n(successful)" at 1.1775000000000002, graph 0.93 center front
 set arrow 90 from 1, graph 0 to 1, graph 1 nohead back dashtype 2 linecolor rgb "#555555"
 set label 90 "criterion 1 m" at 1, graph 0.02 left offset 0.5,0.6 textcolor rgb "#555555"
-set arrow 91 from 0.97999999999999998, 0.11725100586389103 to 0.97999999999999998, 0.086099999999999996 nohead front linecolor rgb "black" linewidth 3
-set label 91 "max |verify − validate| = 0.031\nat 0.98 m" at 0.97999999999999998, 0.10167550293194552 left offset 1,0 front
+set arrow 91 from 1.01, 0.58243621619408015 to 1.01, 0.4839 nohead front linecolor rgb "black" linewidth 3
+set label 91 "max |verify − validate| = 0.099\nat 1.01 m" at 1.01, 0.53316810809704007 right offset -1,0 front
 set terminal pngcairo size 1000,620 noenhanced font "DejaVu Sans,11"
 set output "fig10_radius.png"
 plot "fig10_radius.dat" using 1:4:5 with filledcurves fillcolor rgb "#fdb863" fillstyle transparent solid 0.55 noborder title "validation 95 % Wilson interval", \
