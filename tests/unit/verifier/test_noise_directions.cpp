@@ -11,14 +11,14 @@
 
 #include <cmath>
 #include <cstddef>
-#include <string>
 #include <vector>
 
 #include "engine/noise_segments.hpp"
 #include "engine/path_stepper.hpp"
 #include "engine/state_analysis.hpp"
-#include "p3at/mission/loader.hpp"
 #include "p3at/verifier/models.hpp"
+
+#include "one_leg_mission.hpp"
 
 using namespace p3at;
 using namespace p3at::verifier;
@@ -27,23 +27,6 @@ using namespace p3at::verifier::engine;
 namespace {
 
 constexpr std::size_t kDirections = 8;
-
-/// One robot, a 3 m leg along x with a NOISE held for the whole leg.
-mission::Mission held_noise_leg() {
-  return mission::parse_mission("mission: {name: leg}\n"
-                                "criteria: {tmax_s: 100, rmax_m: 1.0, threshold: 0.5}\n"
-                                "robots:\n"
-                                "  - name: r\n"
-                                "    start: {x_m: 0.0, y_m: 0.0, theta_deg: 0}\n"
-                                "    hal: tcp://127.0.0.1:8101\n"
-                                "    states:\n"
-                                "      - {name: go, behavior: GoToGuarded, params: {goal: [3.0, 0.0], dropoff_m: 0.5,"
-                                " noise_gain: 0.15, noise_persistence_cycles: 100000}}\n"
-                                "      - {name: done, behavior: Stop}\n"
-                                "    transitions:\n"
-                                "      - {from: go, to: done, trigger: AtGoal, params: {radius_m: 0.2}}\n",
-                                "leg.yaml");
-}
 
 /// Start walkers a few degrees apart in heading, with the given weights.
 std::vector<Walker> starts_weighted(const std::vector<double>& weights) {
@@ -61,7 +44,8 @@ std::vector<Walker> starts_weighted(const std::vector<double>& weights) {
 /// The probability each NOISE direction of the first draw carries, over the
 /// paths that finished (all of them on this open-floor leg).
 std::vector<double> mass_per_direction(const std::vector<double>& start_weights, std::size_t* paths = nullptr) {
-  const mission::Mission m = held_noise_leg();
+  // A 3 m leg with a NOISE held for the whole of it (one draw).
+  const mission::Mission m = test::one_leg_mission(3.0, 0.5, 0.15, 100000);
   Models models;
   RobotModel model;
   model.name = "r";

@@ -4,14 +4,16 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <string>
 
 #include "p3at/mission/loader.hpp"
 #include "p3at/verifier/models.hpp"
 #include "p3at/verifier/verify.hpp"
 
+#include "one_leg_mission.hpp"
+
 using namespace p3at;
 using namespace p3at::verifier;
+using p3at::verifier::test::one_leg_mission;
 
 namespace {
 
@@ -25,26 +27,6 @@ Models perfect_models(const mission::Mission& m) {
   models.comm.delivery_s = Mixture1::point(0.0);
   models.comm.ack_s = Mixture1::point(0.0);
   return models;
-}
-
-/// One robot, one leg of `length_m` along x; AtGoal radius 0.2 m.
-mission::Mission leg(double length_m, double dropoff_m, double gain, long persistence) {
-  const std::string text = "mission: {name: leg}\n"
-                           "criteria: {tmax_s: 100, rmax_m: 1.0, threshold: 0.5}\n"
-                           "robots:\n"
-                           "  - name: r\n"
-                           "    start: {x_m: 0.0, y_m: 0.0, theta_deg: 0}\n"
-                           "    hal: tcp://127.0.0.1:8101\n"
-                           "    states:\n"
-                           "      - {name: go, behavior: GoToGuarded, params: {goal: [" +
-                           std::to_string(length_m) + ", 0.0], dropoff_m: " + std::to_string(dropoff_m) +
-                           ", dead_zone_m: 0.05, noise_gain: " + std::to_string(gain) +
-                           ", noise_persistence_cycles: " + std::to_string(persistence) +
-                           "}}\n"
-                           "      - {name: done, behavior: Stop}\n"
-                           "    transitions:\n"
-                           "      - {from: go, to: done, trigger: AtGoal, params: {radius_m: 0.2}}\n";
-  return mission::parse_mission(text, "leg.yaml");
 }
 
 SystemOutcome evaluate(const mission::Mission& m) {
@@ -62,9 +44,9 @@ TEST_CASE("NOISE stronger than the goal's pull inside the slow-down: held it pin
   // direction but those pointing at the goal: the held quadrature blocks.
   // Redrawn every 10 cycles, the robot gets in under some later draw:
   // nothing is blocked, and the wait shows as a long tail of the duration.
-  const SystemOutcome held = evaluate(leg(8.3, 1.5, 0.12, 1'000'000));
+  const SystemOutcome held = evaluate(one_leg_mission(8.3, 1.5, 0.12, 1'000'000));
   CHECK(held.blocked_mass > 0.5);
-  const SystemOutcome redrawn = evaluate(leg(8.3, 1.5, 0.12, 10));
+  const SystemOutcome redrawn = evaluate(one_leg_mission(8.3, 1.5, 0.12, 10));
   CHECK(redrawn.blocked_mass < 1e-9);
   REQUIRE(redrawn.branches.size() == 1);
   const Mixture1& t = redrawn.branches[0].completion_time_s;
@@ -79,8 +61,8 @@ TEST_CASE("NOISE stronger than the goal's pull inside the slow-down: held it pin
 }
 
 TEST_CASE("NOISE held at least as long as the leg: the segment quadrature is the held quadrature, bit for bit") {
-  const SystemOutcome a = evaluate(leg(4.0, 0.5, 0.1, 1'000'000));
-  const SystemOutcome b = evaluate(leg(4.0, 0.5, 0.1, 400));  // the leg takes about 15 s = 150 cycles
+  const SystemOutcome a = evaluate(one_leg_mission(4.0, 0.5, 0.1, 1'000'000));
+  const SystemOutcome b = evaluate(one_leg_mission(4.0, 0.5, 0.1, 400));  // the leg takes about 15 s = 150 cycles
   REQUIRE(a.branches.size() == 1);
   REQUIRE(b.branches.size() == 1);
   CHECK(a.branches[0].completion_time_s == b.branches[0].completion_time_s);
@@ -90,7 +72,7 @@ TEST_CASE("NOISE held at least as long as the leg: the segment quadrature is the
 TEST_CASE("redrawn NOISE: more redraws average the wander out, so the duration's spread shrinks") {
   // Independent draws over k segments: the spread falls roughly as 1/sqrt(k).
   const auto sd = [](long persistence) {
-    const SystemOutcome o = evaluate(leg(12.0, 0.5, 0.1, persistence));
+    const SystemOutcome o = evaluate(one_leg_mission(12.0, 0.5, 0.1, persistence));
     REQUIRE(o.branches.size() == 1);
     return std::sqrt(o.branches[0].completion_time_s.variance());
   };
@@ -104,7 +86,7 @@ TEST_CASE("a held leg's duration is a smooth distribution, not a staircase of on
   // A short leg with NOISE held: 8 quadrature directions, 8 durations. As
   // spikes, P(t <= T) would jump by 1/8 at each; each component now stands
   // for its arc of directions, with the width its neighbours give it.
-  const SystemOutcome o = evaluate(leg(2.5, 0.5, 0.2, 1'000'000));
+  const SystemOutcome o = evaluate(one_leg_mission(2.5, 0.5, 0.2, 1'000'000));
   REQUIRE(o.branches.size() == 1);
   const Mixture1& t = o.branches[0].completion_time_s;
   const double mean = t.mean(), sd = std::sqrt(t.variance());
@@ -118,8 +100,8 @@ TEST_CASE("a held leg's duration is a smooth distribution, not a staircase of on
 }
 
 TEST_CASE("redrawn NOISE: the same input gives the same bytes") {
-  const SystemOutcome a = evaluate(leg(8.3, 1.5, 0.25, 10));
-  const SystemOutcome b = evaluate(leg(8.3, 1.5, 0.25, 10));
+  const SystemOutcome a = evaluate(one_leg_mission(8.3, 1.5, 0.25, 10));
+  const SystemOutcome b = evaluate(one_leg_mission(8.3, 1.5, 0.25, 10));
   REQUIRE(a.branches.size() == b.branches.size());
   CHECK(a.branches[0].completion_time_s == b.branches[0].completion_time_s);
   CHECK(a.branches[0].robots[0].final_components.size() == b.branches[0].robots[0].final_components.size());

@@ -332,12 +332,12 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
     std::vector<Job> jobs;
     const double turn = static_cast<double>(segment) * kGoldenAngleRad;
     if (segment == 0 && dealt) {
-      std::vector<std::size_t> share(live.size(), 0);
-      for (std::size_t g = 0; g < directions; ++g) ++share[g % live.size()];
+      // Dealt only evenly (above): every start takes directions / n of them.
+      const double per_start = static_cast<double>(directions / live.size());
       for (std::size_t g = 0; g < directions; ++g) {
         const std::size_t s = g % live.size();
         jobs.push_back({s, g, g, 0, 2.0 * kPi * (static_cast<double>(g) + 0.5) / static_cast<double>(directions) + turn,
-                        live[s].weight / static_cast<double>(share[s])});
+                        live[s].weight / per_start});
       }
     } else {
       for (std::size_t s = 0; s < live.size(); ++s) {
