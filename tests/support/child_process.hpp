@@ -19,6 +19,8 @@
 #include <thread>
 #include <vector>
 
+#include "scratch.hpp"
+
 extern char** environ;
 
 namespace p3at::test {
@@ -40,11 +42,6 @@ inline int free_tcp_port() {
   return ntohs(addr.sin_port);
 }
 
-/// A unique scratch path under the build tree's temp area.
-inline std::string scratch_path(const std::string& stem) {
-  static int counter = 0;
-  return "/tmp/p3at-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" + stem;
-}
 
 inline std::string read_file(const std::string& path) {
   std::ifstream in(path);

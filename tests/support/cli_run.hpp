@@ -4,7 +4,6 @@
 // carries timing, stdout must not); and reading or writing a whole file.
 
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +11,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+
+#include "scratch.hpp"
 
 namespace p3at::test {
 
@@ -50,8 +51,7 @@ struct CommandOutcome {
 /// Runs `command` with /bin/sh, in `dir` when given; a redirection inside
 /// `command` stays its own, the rest of stdout and stderr is captured.
 inline CommandOutcome run_command(const std::string& command, const std::string& dir = "") {
-  static int counter = 0;
-  const std::string stem = "/tmp/p3at-cli-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  const std::string stem = scratch_path("command");
   const std::string out = stem + ".stdout", err = stem + ".stderr";
   const std::string cd = dir.empty() ? std::string() : "cd '" + dir + "' && ";
   const std::string full = cd + "{ " + command + " ; } >'" + out + "' 2>'" + err + "'";

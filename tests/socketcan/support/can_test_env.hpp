@@ -57,10 +57,7 @@ inline std::string read_text(const std::string& path) {
   return ss.str();
 }
 
-inline std::string scratch_file(const std::string& stem) {
-  static int counter = 0;
-  return "/tmp/p3at-can-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" + stem;
-}
+inline std::string scratch_file(const std::string& stem) { return scratch_path(stem); }
 
 inline std::int64_t steady_us() {
   return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now().time_since_epoch())

@@ -46,9 +46,7 @@ nlohmann::json without_timing(nlohmann::json j) {
 }  // namespace
 
 TEST_CASE("vipars crosscheck: the same results for any --jobs, a folder that remakes itself") {
-  const fs::path dir = fs::temp_directory_path() / ("p3at-crosscheck-cli-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = p3at::test::scratch_dir("crosscheck-cli");
   const Outcome one = run(kVipars + kCampaign + " --jobs 1 --out a", dir);
   REQUIRE(one.status == 0);
   const Outcome two = run(kVipars + kCampaign + " --jobs 2 --out b", dir);
@@ -102,9 +100,7 @@ TEST_CASE("vipars crosscheck: the same results for any --jobs, a folder that rem
 }
 
 TEST_CASE("vipars crosscheck --runs-only makes the runs a later --reuse-runs campaign scores, unchanged") {
-  const fs::path dir = fs::temp_directory_path() / ("p3at-crosscheck-runs-only-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = p3at::test::scratch_dir("crosscheck-runs-only");
   const Outcome only = run(kVipars + kCampaign + " --runs-only --out b", dir);
   REQUIRE(only.status == 0);
   CHECK(fs::is_regular_file(dir / "b/missions/gen_5/runs.part"));
@@ -137,9 +133,7 @@ TEST_CASE("vipars crosscheck --runs-only makes the runs a later --reuse-runs cam
 }
 
 TEST_CASE("vipars crosscheck --reuse-runs: the folder's runs give the same results; other or damaged runs are not used") {
-  const fs::path dir = fs::temp_directory_path() / ("p3at-crosscheck-reuse-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = p3at::test::scratch_dir("crosscheck-reuse");
   const std::string campaign = kVipars + kCampaign + " --reuse-runs --out a";
   const Outcome first = run(campaign, dir);
   REQUIRE(first.status == 0);
@@ -196,7 +190,7 @@ TEST_CASE("vipars crosscheck --reuse-runs: the folder's runs give the same resul
 }
 
 TEST_CASE("vipars crosscheck and generate: bad input is exit 2 with a message") {
-  const fs::path dir = fs::temp_directory_path();
+  const fs::path dir = p3at::test::scratch_dir("crosscheck-bad-input");
   Outcome o = run(kVipars + " crosscheck --seeds 5:5 --robots 0:3", dir);
   CHECK(o.status == 2);
   CHECK(o.err.find("--robots") != std::string::npos);

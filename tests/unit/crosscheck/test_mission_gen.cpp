@@ -15,6 +15,7 @@
 #include "p3at/mission_gen/generator.hpp"
 #include "p3at/mission/loader.hpp"
 #include "p3at/sim/world_config.hpp"
+#include "scratch.hpp"
 
 using namespace p3at;
 
@@ -42,8 +43,7 @@ TEST_CASE("generator: the same seed gives the same bytes, another seed another m
 }
 
 TEST_CASE("generator: 500 seeds load, from text and from files, within the issue's ranges") {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "p3at_unit_mission_gen";
-  std::filesystem::remove_all(dir);
+  const std::filesystem::path dir = p3at::test::scratch_path("mission_gen");
   std::vector<mission_gen::Coverage> cov;
   std::vector<std::size_t> sizes(7, 0);
   for (std::uint64_t s = 1; s <= 500; ++s) {
@@ -121,7 +121,7 @@ TEST_CASE("generator: the robot range is honoured and checked") {
 
 TEST_CASE("generator: the floor plan's script and data name every robot") {
   const auto g = gen(3);
-  const std::string base = (std::filesystem::temp_directory_path() / "p3at_unit_plan").string();
+  const std::string base = p3at::test::scratch_path("plan");
   CHECK(mission_gen::draw_picture(g, base, "") == "");  // no gnuplot: files only
   std::ifstream gp(base + ".gp");
   std::stringstream s;

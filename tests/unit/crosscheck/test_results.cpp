@@ -13,6 +13,7 @@
 #include "p3at/crosscheck/baseline.hpp"
 #include "p3at/crosscheck/result_json.hpp"
 #include "p3at/crosscheck/separation_curve.hpp"
+#include "scratch.hpp"
 
 using namespace p3at::crosscheck;
 
@@ -210,7 +211,7 @@ TEST_CASE("baseline: measured + margin for generated missions, the bounds for sh
   CHECK(entries[1].time_tolerant == 0.05);
   CHECK(entries[1].overconfident_go_cells == 0);
 
-  const std::string path = (std::filesystem::temp_directory_path() / "p3at_unit_baseline.json").string();
+  const std::string path = p3at::test::scratch_path("baseline.json");
   std::ofstream(path) << baseline_json(entries, "test").dump(2);
   const auto loaded = load_baseline(path);
   REQUIRE(loaded.size() == 3);

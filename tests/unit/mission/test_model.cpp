@@ -10,6 +10,7 @@
 #include "fixtures.hpp"
 #include "p3at/mission/loader.hpp"
 #include "p3at/mission/mission.hpp"
+#include "scratch.hpp"
 
 using namespace p3at::mission;
 using p3at::mission::test::kBoundingOverwatch;
@@ -275,9 +276,7 @@ TEST_CASE("load_mission_file reports the path with line and column") {
 }
 
 TEST_CASE("load_mission_file refuses a file too large to be a mission") {
-  // Unique per process, so parallel test runs (plain and sanitized builds) do not collide.
-  const auto path = std::filesystem::temp_directory_path() /
-                    ("p3at_unit_mission_too_large_" + std::to_string(::getpid()) + ".yaml");
+  const std::filesystem::path path = p3at::test::scratch_path("too_large.yaml");
   {
     std::ofstream out(path, std::ios::binary);
     const std::string chunk(1024 * 1024, ' ');

@@ -33,13 +33,7 @@ const std::string kWorld = kExample + "world.yaml";
 // A small grid across the example's rise (P(t) from ~185 s, P(r) from ~1.8 m) and few runs: seconds.
 const std::string kRanges = "--tmax-range 180:215:5 --rmax-range 1.5:2.5:0.25";
 
-std::string scratch_dir(const std::string& stem) {
-  static int counter = 0;
-  const std::string dir =
-      "/tmp/p3at-report-cli-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" + stem;
-  fs::create_directories(dir);
-  return dir;
-}
+using p3at::test::scratch_dir;
 
 // Runs a shell command line in `dir` (vipars's path substituted for a leading "vipars").
 Outcome sh(const std::string& dir, const std::string& command) {

@@ -16,19 +16,14 @@
 #include "p3at/report/report_html.hpp"
 #include "p3at/report/report_plots.hpp"
 #include "report_test_docs.hpp"
+#include "scratch.hpp"
 
 namespace {
 
 using namespace p3at::vipars::report;
 namespace fs = std::filesystem;
 
-std::string scratch_dir(const std::string& stem) {
-  static int counter = 0;
-  const std::string dir =
-      "/tmp/p3at-report-page-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" + stem;
-  fs::create_directories(dir);
-  return dir;
-}
+using p3at::test::scratch_dir;
 
 std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

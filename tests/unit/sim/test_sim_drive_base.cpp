@@ -13,6 +13,7 @@
 #include "p3at/sim/sim_drive_base.hpp"
 #include "p3at/sim/truth_csv.hpp"
 #include "sim_test_util.hpp"
+#include "scratch.hpp"
 
 using namespace p3at::sim;
 using p3at::sim::test::exact_robot;
@@ -93,8 +94,7 @@ TEST_CASE("odometry is quantised like the SIP counters of the subclass") {
 
 TEST_CASE("the truth CSV has a header and one row per robot per cycle") {
   World world(world_of({exact_robot("a", 1.0, 2.0, 90.0), exact_robot("b", 5.0, 2.0)}));
-  const std::string path =
-      (std::filesystem::temp_directory_path() / ("unit_sim_truth_" + std::to_string(::getpid()) + ".csv")).string();
+  const std::string path = p3at::test::scratch_path("truth.csv");
   auto writer = TruthCsvWriter::open(path);
   REQUIRE(writer.ok());
   world.robot(0).controller().enable_motors(true);

@@ -8,16 +8,14 @@
 #include <string>
 
 #include "p3at/team_link/team_key.hpp"
+#include "scratch.hpp"
 
 using namespace p3at;
 using hal::TeamKey;
 
 namespace {
 
-std::string temp_path(const std::string& stem) {
-  static int counter = 0;
-  return "/tmp/p3at-teamkey-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" + stem;
-}
+std::string temp_path(const std::string& stem) { return p3at::test::scratch_path(stem); }
 
 /// Writes a key file readable by its owner only (as a key file must be).
 void write_text(const std::string& path, const std::string& text) {

@@ -25,6 +25,7 @@
 #include "p3at/team_sim/campaign.hpp"
 #include "p3at/team_sim/campaign_part.hpp"
 #include "p3at/team_sim/run_table.hpp"
+#include "scratch.hpp"
 
 namespace {
 
@@ -212,7 +213,7 @@ TEST_CASE("a part round-trips bit for bit, and writes the same bytes again") {
 }
 
 TEST_CASE("a part written to a file reads back; a missing file is named") {
-  const std::string path = "/tmp/p3at-part-test-" + std::to_string(::getpid()) + ".part";
+  const std::string path = p3at::test::scratch_path("campaign.part");
   const CampaignPart part = hand_part(40, Shard{2, 3});
   REQUIRE(p3at::team_sim::write_part_file(path, part).ok());
   auto back = p3at::team_sim::read_part_file(path);

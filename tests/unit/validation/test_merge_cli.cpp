@@ -30,10 +30,7 @@ using Outcome = p3at::test::CommandOutcome;
 const std::string kMission = std::string(P3AT_SOURCE_DIR) + "/examples/relay/mission.yaml";
 const std::string kWorld = std::string(P3AT_SOURCE_DIR) + "/examples/relay/world.yaml";
 
-std::string scratch(const std::string& stem) {
-  static int counter = 0;
-  return "/tmp/p3at-merge-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" + stem;
-}
+std::string scratch(const std::string& stem) { return p3at::test::scratch_path(stem); }
 
 // The built vipars with `args` (already shell-quoted where needed).
 Outcome vipars(const std::string& args) { return p3at::test::run_command("'" + std::string(P3AT_VIPARS_BIN) + "' " + args); }

@@ -9,6 +9,7 @@
 
 #include "p3at/common/file_bytes.hpp"
 #include "p3at/team_sim/part_file.hpp"
+#include "scratch.hpp"
 
 using namespace p3at::team_sim;
 
@@ -53,7 +54,7 @@ TEST_CASE("PartLines numbers lines; expect_line checks the key and the number of
 }
 
 TEST_CASE("write_file_whole, then read_file_bytes: the bytes back; a missing file is not_found") {
-  const std::string path = "/tmp/p3at-part-file-test-" + std::to_string(::getpid()) + ".part";
+  const std::string path = p3at::test::scratch_path("whole.part");
   REQUIRE(write_file_whole(path, [](std::ostream& out) { out << "one\ntwo\n"; }));
   const auto text = p3at::read_file_bytes(path);
   REQUIRE(text);

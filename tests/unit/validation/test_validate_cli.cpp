@@ -28,10 +28,7 @@ using Outcome = p3at::test::CommandOutcome;
 const std::string kMission = std::string(P3AT_SOURCE_DIR) + "/examples/relay/mission.yaml";
 const std::string kWorld = std::string(P3AT_SOURCE_DIR) + "/examples/relay/world.yaml";
 
-std::string scratch(const std::string& stem) {
-  static int counter = 0;
-  return "/tmp/p3at-validate-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" + stem;
-}
+std::string scratch(const std::string& stem) { return p3at::test::scratch_path(stem); }
 
 // Runs vipars with `args` (already shell-quoted where needed); stdout and
 // stderr captured separately (stderr carries timing, stdout must not).

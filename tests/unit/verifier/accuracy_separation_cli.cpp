@@ -67,8 +67,7 @@ std::vector<double> closest_approaches(const std::string& csv) {
 }  // namespace
 
 TEST_CASE("crossing_behind: P(never within d) against 4,000 runs' closest approaches") {
-  const std::filesystem::path csv =
-      std::filesystem::temp_directory_path() / ("p3at_separation_" + std::to_string(::getpid()) + ".csv");
+  const std::filesystem::path csv = p3at::test::scratch_path("separation.csv");
   const auto v = p3at::test::run_command(p3at::test::vipars_binary() + " validate " + data("mission.yaml") + " --world " +
                                          data("world.yaml") + " --trials 4000 --seed 1 --jobs 2 --csv " + csv.string());
   REQUIRE(v.status == 0);
@@ -100,8 +99,7 @@ TEST_CASE("crossing_behind: P(never within d) against 4,000 runs' closest approa
   // The criterion file reads the same probability (one pair: the whole team).
   const std::string criterion = "criterion apart\nnetwork Delay<t1> ; (Delay<t2> # At<robot1, p>) | "
                                 "Delay<t3> ; (Delay<t4> # At<robot2, q>)\nconstraints\n  t1, t3 > 0\n  P(|p - q| > 2.5) > 0.8\n";
-  const std::filesystem::path crit =
-      std::filesystem::temp_directory_path() / ("p3at_separation_" + std::to_string(::getpid()) + ".crit");
+  const std::filesystem::path crit = p3at::test::scratch_path("separation.crit");
   p3at::test::write_file(crit.string(), criterion);
   const auto r = p3at::test::run_command(p3at::test::vipars_binary() + " verify " + data("mission.yaml") + " --models " +
                                          data("models.yaml") + " --criterion " + crit.string() + " --json");

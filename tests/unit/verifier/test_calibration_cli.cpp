@@ -74,8 +74,7 @@ robots:
 )";
 
 struct Scratch {
-  Scratch() : dir(fs::temp_directory_path() / ("p3at-calibrate-cli-" + std::to_string(::getpid()))) {
-    fs::create_directories(dir);
+  Scratch() : dir(p3at::test::scratch_dir("calibrate-cli")) {
     std::ofstream(dir / "world.yaml") << kWorld;
   }
   ~Scratch() {

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "p3at/verifier/calibration.hpp"
+#include "scratch.hpp"
 
 namespace {
 
@@ -163,8 +164,7 @@ TEST_CASE("errors name file:line:column and what was expected") {
 TEST_CASE("files: a missing file, a directory, and a real one") {
   CHECK_THROWS_WITH(p3at::verifier::load_calibration_log("/nonexistent/log.csv"),
                     "/nonexistent/log.csv: cannot read calibration log: no such file");
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "p3at_test_calibration_log";
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = p3at::test::scratch_dir("calibration_log");
   CHECK_THROWS_WITH(p3at::verifier::load_calibration_log(dir.string()),
                     (dir.string() + ": cannot read calibration log: it is a directory").c_str());
   const std::string path = (dir / "lab.csv").string();

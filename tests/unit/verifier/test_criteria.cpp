@@ -13,6 +13,7 @@
 #include "p3at/verifier/criteria.hpp"
 #include "p3at/verifier/separation.hpp"
 #include "p3at/verifier/pars/printer.hpp"
+#include "scratch.hpp"
 
 namespace v = p3at::verifier;
 namespace mission = p3at::mission;
@@ -133,7 +134,7 @@ TEST_SUITE("criterion files") {
   }
 
   TEST_CASE("load_criterion_file reads a file and names unreadable ones") {
-    const std::string path = "/tmp/p3at_test_criteria_eq4.crit";
+    const std::string path = p3at::test::scratch_path("eq4.crit");
     {
       std::ofstream out(path);
       out << kEq4;

@@ -13,6 +13,7 @@
 #include <string_view>
 
 #include "p3at/verifier/models.hpp"
+#include "scratch.hpp"
 
 namespace {
 
@@ -154,8 +155,7 @@ void check_same(const Models& a, const Models& b) {
 }
 
 std::filesystem::path temp_dir() {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "p3at_test_models";
-  std::filesystem::create_directories(dir);
+  static const std::filesystem::path dir = p3at::test::scratch_dir("models");
   return dir;
 }
 

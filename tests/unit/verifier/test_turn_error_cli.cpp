@@ -115,8 +115,7 @@ TEST_CASE("a turn on wheels whose scales differ moves the robot forward: calibra
   // turn the wheels' true speeds do not cancel: the centre moves (T/4)(1/r -
   // 1/l) per radian, T the nominal track 0.588 m: 9.14 mm/rad. Over the
   // mission's 110-degree turn, 1.7 cm along the heading that odometry never sees.
-  const fs::path dir = fs::temp_directory_path() / ("p3at_turn_move_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const fs::path dir = p3at::test::scratch_dir("turn_move");
   const std::string models = (dir / "models.yaml").string();
   const auto cal = p3at::test::run_command(vipars() + " calibrate --world " + turn_move("world.yaml") +
                                            " --runs 20 --speed 0.3 --seed 3 --out " + models);
