@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <set>
 #include <tuple>
@@ -292,6 +293,106 @@ class Detector {
     dfs(r.initial);
   }
 
+  /// What may pin a robot driving from a to b: a wall across the leg, a
+  /// concave corner within AVOID's reach of it, a gap narrower than the robot
+  /// with margin that it passes through. `body` is the robot's radius plus
+  /// the margin, `reach` AVOID_OBSTACLES' influence, `narrow` the widest gap
+  /// counted as one.
+  static void leg_traps(P a, P b, const std::vector<Wall>& walls, const std::vector<std::size_t>& part, double body,
+                        double reach, double narrow, std::vector<std::string>& found) {
+    // Only walls within reach of the leg can pin the robot on it: every
+    // test below needs both of its walls that close (this keeps the cost
+    // linear in the walls for a large map).
+    std::vector<std::size_t> near;
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+      const P c{walls[w].x0_m, walls[w].y0_m}, d{walls[w].x1_m, walls[w].y1_m};
+      if (segment_distance(a, b, c, d) < std::max(reach, narrow)) near.push_back(w);
+    }
+    for (std::size_t ni = 0; ni < near.size(); ++ni) {
+      const std::size_t w = near[ni];
+      const P c{walls[w].x0_m, walls[w].y0_m}, d{walls[w].x1_m, walls[w].y1_m};
+      if (segments_cross(a, b, c, d)) found.push_back("a wall " + pt(c) + "-" + pt(d) + " lies across the leg");
+      for (std::size_t nj = ni + 1; nj < near.size(); ++nj) {
+        const std::size_t v = near[nj];
+        const P e{walls[v].x0_m, walls[v].y0_m}, f{walls[v].x1_m, walls[v].y1_m};
+        // A concave corner: two walls meeting at a point, the leg passing
+        // inside the angle they make within AVOID's reach of both (where
+        // their pushes and the goal's pull can cancel: a robot pinned).
+        for (const auto& [corner, u_end] : {std::pair{c, d}, std::pair{d, c}}) {
+          for (const auto& [other_corner, other_end] : {std::pair{e, f}, std::pair{f, e}}) {
+            if (norm(corner - other_corner) > 1e-3) continue;
+            const P u = u_end - corner, vv = other_end - corner;
+            const double det = cross(u, vv);
+            if (std::abs(det) < 1e-6 * norm(u) * norm(vv)) continue;  // collinear: one straight wall
+            const double length = norm(b - a);
+            const int steps = std::max(1, static_cast<int>(length / 0.1));
+            for (int k = 0; k <= steps; ++k) {
+              const P q = a + (static_cast<double>(k) / steps) * (b - a);
+              const P rel = q - corner;
+              const double alpha = cross(rel, vv) / det, beta = cross(u, rel) / det;
+              if (!(alpha > 0.0 && beta > 0.0)) continue;
+              if (norm(closest_on(c, d, q) - q) < reach && norm(closest_on(e, f, q) - q) < reach) {
+                found.push_back("a concave corner at " + pt(corner) + ": the leg passes within " + num(reach, 2) +
+                                " m (avoidance reach) of both its walls");
+                break;
+              }
+            }
+          }
+        }
+        // A narrow gap between two walls that the leg passes through
+        // (not two sides of one small object, such as a pillar's).
+        const double gap = segment_distance(c, d, e, f);
+        if (gap > 1e-3 && gap < narrow && !(part[w] == part[v] && part[w] != kNoObject)) {
+          P p1 = closest_on(c, d, closest_on(e, f, c)), p2 = closest_on(e, f, p1);
+          for (const P& cand : {c, d}) {
+            const P q = closest_on(e, f, cand);
+            if (norm(q - cand) < norm(p2 - p1)) {
+              p1 = cand;
+              p2 = q;
+            }
+          }
+          if (segments_cross(a, b, p1, p2) || norm(closest_on(a, b, 0.5 * (p1 + p2)) - 0.5 * (p1 + p2)) < 0.5 * gap) {
+            found.push_back("a gap of " + num(gap, 2) + " m between walls at " + pt(0.5 * (p1 + p2)) +
+                            " (the robot needs " + num(2.0 * body, 2) + " m plus margin)");
+          }
+        }
+      }
+    }
+  }
+
+  /// The paths a run may drive instead of the believed leg from e's start to
+  /// `goal`, as polylines: the mean path (the leg moved by the predicted mean
+  /// pose error: its start by the position error, turned by the heading
+  /// error, bent by the heading drift the leg gathers), and that path moved
+  /// kTailSds standard deviations of the sideways error to either side at
+  /// every point. The sideways error at distance s along the leg is a.e for
+  /// the entry's error e, a = (across, s), plus what the leg gathers itself
+  /// (heading variance h per metre: h s^3 / 3), so the band widens along the
+  /// leg the way a run's spread does.
+  static std::vector<std::vector<P>> run_paths(const LegEntryRecord& e, P goal, const MotionError& motion) {
+    constexpr int kPieces = 8;
+    const P from{e.x0_m, e.y0_m};
+    const P d = goal - from;
+    const double length = norm(d);
+    const double c = std::cos(e.error_mean(2)), sn = std::sin(e.error_mean(2));
+    const P along = length > 1e-9 ? (1.0 / length) * P{c * d.x - sn * d.y, sn * d.x + c * d.y} : P{1.0, 0.0};
+    const P left{-along.y, along.x};
+    const Eigen::Vector3d across(-d.y / std::max(length, 1e-9), d.x / std::max(length, 1e-9), 0.0);
+    std::vector<std::vector<P>> paths(3);
+    for (int k = 0; k <= kPieces; ++k) {
+      const double s = length * k / kPieces;
+      const P mean = from + P{e.error_mean(0), e.error_mean(1)} + s * along +
+                     (motion.drift_rad_per_m * s * s / 2.0) * left;
+      const Eigen::Vector3d a(across(0), across(1), s);
+      const double sd = std::sqrt(std::max(0.0, a.dot(e.error_cov * a)) + motion.heading_var_per_m * s * s * s / 3.0);
+      paths[0].push_back(mean);
+      paths[1].push_back(mean + (kTailSds * sd) * left);
+      paths[2].push_back(mean - (kTailSds * sd) * left);
+    }
+    return paths;
+  }
+  static constexpr double kTailSds = 2.0;
+
   void traps(std::size_t i, const RobotModel& model, const std::vector<std::vector<P>>& entries) {
     const RobotSpec& r = m_.robots[i];
     const auto& walls = models_.environment.walls;
@@ -303,64 +404,24 @@ class Detector {
       const double reach = body + go->sphere_m;  // AVOID_OBSTACLES' influence
       const double narrow = 2.0 * body + 0.2;    // a gap the robot cannot pass with margin
       std::vector<std::string> found;
-      for (const auto& [a, b] : legs_of(r, s, entries)) {
-        // Only walls within reach of the leg can pin the robot on it: every
-        // test below needs both of its walls that close (this keeps the cost
-        // linear in the walls for a large map).
-        std::vector<std::size_t> near;
-        for (std::size_t w = 0; w < walls.size(); ++w) {
-          const P c{walls[w].x0_m, walls[w].y0_m}, d{walls[w].x1_m, walls[w].y1_m};
-          if (segment_distance(a, b, c, d) < std::max(reach, narrow)) near.push_back(w);
-        }
-        for (std::size_t ni = 0; ni < near.size(); ++ni) {
-          const std::size_t w = near[ni];
-          const P c{walls[w].x0_m, walls[w].y0_m}, d{walls[w].x1_m, walls[w].y1_m};
-          if (segments_cross(a, b, c, d)) found.push_back("a wall " + pt(c) + "-" + pt(d) + " lies across the leg");
-          for (std::size_t nj = ni + 1; nj < near.size(); ++nj) {
-            const std::size_t v = near[nj];
-            const P e{walls[v].x0_m, walls[v].y0_m}, f{walls[v].x1_m, walls[v].y1_m};
-            // A concave corner: two walls meeting at a point, the leg passing
-            // inside the angle they make within AVOID's reach of both (where
-            // their pushes and the goal's pull can cancel: a robot pinned).
-            for (const auto& [corner, u_end] : {std::pair{c, d}, std::pair{d, c}}) {
-              for (const auto& [other_corner, other_end] : {std::pair{e, f}, std::pair{f, e}}) {
-                if (norm(corner - other_corner) > 1e-3) continue;
-                const P u = u_end - corner, vv = other_end - corner;
-                const double det = cross(u, vv);
-                if (std::abs(det) < 1e-6 * norm(u) * norm(vv)) continue;  // collinear: one straight wall
-                const double length = norm(b - a);
-                const int steps = std::max(1, static_cast<int>(length / 0.1));
-                for (int k = 0; k <= steps; ++k) {
-                  const P q = a + (static_cast<double>(k) / steps) * (b - a);
-                  const P rel = q - corner;
-                  const double alpha = cross(rel, vv) / det, beta = cross(u, rel) / det;
-                  if (!(alpha > 0.0 && beta > 0.0)) continue;
-                  if (norm(closest_on(c, d, q) - q) < reach && norm(closest_on(e, f, q) - q) < reach) {
-                    found.push_back("a concave corner at " + pt(corner) + ": the leg passes within " + num(reach, 2) +
-                                    " m (avoidance reach) of both its walls");
-                    break;
-                  }
-                }
-              }
-            }
-            // A narrow gap between two walls that the leg passes through
-            // (not two sides of one small object, such as a pillar's).
-            const double gap = segment_distance(c, d, e, f);
-            if (gap > 1e-3 && gap < narrow && !(part[w] == part[v] && part[w] != kNoObject)) {
-              P p1 = closest_on(c, d, closest_on(e, f, c)), p2 = closest_on(e, f, p1);
-              for (const P& cand : {c, d}) {
-                const P q = closest_on(e, f, cand);
-                if (norm(q - cand) < norm(p2 - p1)) {
-                  p1 = cand;
-                  p2 = q;
-                }
-              }
-              if (segments_cross(a, b, p1, p2) || norm(closest_on(a, b, 0.5 * (p1 + p2)) - 0.5 * (p1 + p2)) < 0.5 * gap) {
-                found.push_back("a gap of " + num(gap, 2) + " m between walls at " + pt(0.5 * (p1 + p2)) +
-                                " (the robot needs " + num(2.0 * body, 2) + " m plus margin)");
-              }
+      for (const auto& [a, b] : legs_of(r, s, entries)) leg_traps(a, b, walls, part, body, reach, narrow, found);
+      // The mission's legs are where the robot believes it drives; a run
+      // drives them shifted by the odometry error it has gathered, which the
+      // evaluation predicts at each entry (gen_7082: a mean of 0.67 m at its
+      // fourth leg's start put 15 % of the runs against the end of a 2.15 m
+      // gap the believed leg passes clear of).
+      if (found.empty()) {
+        for (const LegEntryRecord& e : o_.leg_entries) {
+          if (e.robot != i || e.state != s) continue;
+          for (const std::vector<P>& path : run_paths(e, {go->goal.x_m, go->goal.y_m}, model.motion)) {
+            for (std::size_t k = 1; k < path.size(); ++k) {
+              leg_traps(path[k - 1], path[k], walls, part, body, reach, narrow, found);
             }
           }
+        }
+        for (std::string& f : found) {
+          f = "with the pose error a run may carry (the predicted mean, and " + num(kTailSds, 0) +
+              " sd either side along the leg): " + f;
         }
       }
       if (found.empty()) continue;

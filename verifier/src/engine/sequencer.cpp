@@ -345,6 +345,7 @@ class Sequencer {
     record_entries_ = false;
     outcome_ = SystemOutcome{};
     legs_seen_.clear();
+    leg_entries_of_.clear();  // indices into the outcome just reset
     look_ahead_cache_.clear();  // its cycles count toward this evaluation's budget again
 
     BranchState b;
@@ -496,6 +497,7 @@ class Sequencer {
     }
     const StateAnalysis& a = track.analysis;
     note_concurrent_legs(b, i, state);
+    note_leg_entry(b.robots[i], i, state);
     // A motion state that listens for a message (it has a trajectory) is not
     // over for a path that gets stuck on the way (pinned by a wall's
     // avoidance, held off its goal by NOISE): the robot stands where that
@@ -1542,6 +1544,45 @@ class Sequencer {
     }
   }
 
+  /// Robot i has just entered `state`: if it drives a leg, where from and
+  /// with what odometry error, for the trap check on the error's tails. A few
+  /// distinct entries per state (branches mostly repeat one another).
+  void note_leg_entry(const Track& t, std::size_t i, std::size_t state) {
+    if (!std::holds_alternative<mission::GoToGuardedParams>(mission_.robots[i].states[state].behavior)) return;
+    constexpr std::size_t kMaxPerState = 8;
+    constexpr double kSameM = 0.05, kSameRad = 0.01;
+    Eigen::Matrix3d cov = t.error.cov;
+    cov.topLeftCorner<2, 2>() += t.extra_cov;
+    std::vector<std::size_t>& kept = leg_entries_of_[{i, state}];
+    for (const std::size_t k : kept) {
+      const LegEntryRecord& seen = outcome_.leg_entries[k];
+      const bool same = std::hypot(seen.x0_m - t.base.x_m, seen.y0_m - t.base.y_m) < kSameM &&
+                        (seen.error_mean - t.error.mean).head<2>().norm() < kSameM &&
+                        std::abs(seen.error_mean(2) - t.error.mean(2)) < kSameRad &&
+                        std::abs(std::sqrt(seen.error_cov(2, 2)) - std::sqrt(cov(2, 2))) < kSameRad &&
+                        std::abs(std::sqrt(seen.error_cov.topLeftCorner<2, 2>().trace()) -
+                                 std::sqrt(cov.topLeftCorner<2, 2>().trace())) < kSameM;
+      if (same) return;
+    }
+    const LegEntryRecord entry{i, state, t.base.x_m, t.base.y_m, t.error.mean, cov};
+    if (kept.size() < kMaxPerState) {
+      kept.push_back(outcome_.leg_entries.size());
+      outcome_.leg_entries.push_back(entry);
+      return;
+    }
+    // Full (a loop's laps gather more error each time round): the entry
+    // that strays least gives way, so the widest errors are the ones tried.
+    const auto strays = [](const LegEntryRecord& e) {
+      constexpr double kLeverM = 10.0;  // a heading error counted over a typical leg
+      return e.error_mean.head<2>().norm() + 2.0 * std::sqrt(e.error_cov.topLeftCorner<2, 2>().trace()) +
+             kLeverM * (std::abs(e.error_mean(2)) + 2.0 * std::sqrt(e.error_cov(2, 2)));
+    };
+    const auto least = std::min_element(kept.begin(), kept.end(), [&](std::size_t a, std::size_t b) {
+      return strays(outcome_.leg_entries[a]) < strays(outcome_.leg_entries[b]);
+    });
+    if (strays(outcome_.leg_entries[*least]) < strays(entry)) outcome_.leg_entries[*least] = entry;
+  }
+
   const mission::Mission& mission_;
   const Models& models_;
   std::vector<Segment> walls_;
@@ -1554,6 +1595,8 @@ class Sequencer {
       look_ahead_cache_;  ///< look_ahead's predictions
   std::set<std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>> legs_seen_;  ///< concurrent_legs' keys  ///< while the initial states are entered: the robot entering
   std::map<std::pair<std::size_t, std::size_t>, ErrorState> entry_errors_;
+  /// outcome_.leg_entries' indices per (robot, state).
+  std::map<std::pair<std::size_t, std::size_t>, std::vector<std::size_t>> leg_entries_of_;
   static constexpr std::size_t kMaxCachedAnalyses = 2048;
   std::map<std::string, StateAnalysis> analysis_cache_;
 };

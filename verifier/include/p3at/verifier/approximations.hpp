@@ -36,7 +36,8 @@ struct Approximation {
 };
 
 /// The approximations of `mission` under `models`, given the evaluation's
-/// outcome (races, concurrent legs), sorted by robot, then kind. Not located
+/// outcome (races, concurrent legs, the pose error at each leg's entry),
+/// sorted by robot, then kind. Not located
 /// (`where` empty): locate_approximations() does that from the file's text.
 std::vector<Approximation> detect_approximations(const mission::Mission& mission, const Models& models,
                                                  const SystemOutcome& outcome);

@@ -132,6 +132,19 @@ struct ConcurrentLegs {
   double tx0_m = 0.0, ty0_m = 0.0, tx1_m = 0.0, ty1_m = 0.0; ///< teammate's leg (from where it is now)
 };
 
+/// Robot `robot` entered GoToGuarded state `state` from odometry position
+/// (x0_m, y0_m) with this predicted pose error (true minus odometry: x, y,
+/// heading; its mean and covariance). The model steps its paths at the mean
+/// error; the trap check also tries the leg moved into the error's tails
+/// (approximations.cpp, traps()), where a run may meet a gap or a corner the
+/// mean path misses. A few per state.
+struct LegEntryRecord {
+  std::size_t robot = 0, state = 0;
+  double x0_m = 0.0, y0_m = 0.0;
+  Eigen::Vector3d error_mean = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d error_cov = Eigen::Matrix3d::Zero();
+};
+
 struct SystemOutcome {
   std::vector<Branch> branches;   ///< weights sum to 1 - pruned_mass - blocked_mass
   double pruned_mass = 0.0;       ///< ordering mass dropped to keep within Budget::max_branches
@@ -149,6 +162,7 @@ struct SystemOutcome {
   std::vector<BlockedRecord> blocked;          ///< who blocked_mass belongs to
   std::vector<RaceRecord> races;               ///< events with three or more plausible first robots
   std::vector<ConcurrentLegs> concurrent_legs; ///< pairs of legs driven at the same time
+  std::vector<LegEntryRecord> leg_entries;     ///< odometry errors at GoToGuarded entries
 };
 
 }  // namespace p3at::verifier
