@@ -18,8 +18,8 @@ set object 3 rectangle from 2.2250000000000001, graph 0 to 3, graph 1 behind fil
 set label 3 "High confidence\n(successful)" at 2.6124999999999998, graph 0.93 center front
 set arrow 90 from 2, graph 0 to 2, graph 1 nohead back dashtype 2 linecolor rgb "#555555"
 set label 90 "criterion 2 m" at 2, graph 0.02 left offset 0.5,0.6 textcolor rgb "#555555"
-set arrow 91 from 1.95, 0.29894616555176512 to 1.95, 0.28139999999999998 nohead front linecolor rgb "black" linewidth 3
-set label 91 "max |verify − validate| = 0.018\nat 1.95 m" at 1.95, 0.29017308277588255 left offset 1,0 front
+set arrow 91 from 1.95, 0.29894616555176512 to 1.95, 0.28220000000000001 nohead front linecolor rgb "black" linewidth 3
+set label 91 "max |verify − validate| = 0.017\nat 1.95 m" at 1.95, 0.29057308277588256 left offset 1,0 front
 set terminal pngcairo size 1000,620 noenhanced font "DejaVu Sans,11"
 set output "fig10_radius.png"
 plot "fig10_radius.dat" using 1:4:5 with filledcurves fillcolor rgb "#fdb863" fillstyle transparent solid 0.55 noborder title "validation 95 % Wilson interval", \

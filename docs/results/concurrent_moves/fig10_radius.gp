@@ -18,8 +18,8 @@ set object 3 rectangle from 1.0550000000000002, graph 0 to 1.3, graph 1 behind f
 set label 3 "High confidence\n(successful)" at 1.1775000000000002, graph 0.93 center front
 set arrow 90 from 1, graph 0 to 1, graph 1 nohead back dashtype 2 linecolor rgb "#555555"
 set label 90 "criterion 1 m" at 1, graph 0.02 left offset 0.5,0.6 textcolor rgb "#555555"
-set arrow 91 from 1.01, 0.58243621619408015 to 1.01, 0.4839 nohead front linecolor rgb "black" linewidth 3
-set label 91 "max |verify − validate| = 0.099\nat 1.01 m" at 1.01, 0.53316810809704007 right offset -1,0 front
+set arrow 91 from 0.98999999999999999, 0.28142670055397706 to 0.98999999999999999, 0.22439999999999999 nohead front linecolor rgb "black" linewidth 3
+set label 91 "max |verify − validate| = 0.057\nat 0.99 m" at 0.98999999999999999, 0.25291335027698852 left offset 1,0 front
 set terminal pngcairo size 1000,620 noenhanced font "DejaVu Sans,11"
 set output "fig10_radius.png"
 plot "fig10_radius.dat" using 1:4:5 with filledcurves fillcolor rgb "#fdb863" fillstyle transparent solid 0.55 noborder title "validation 95 % Wilson interval", \

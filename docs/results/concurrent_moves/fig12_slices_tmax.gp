@@ -18,13 +18,13 @@ plot keyentry with lines linewidth 2.5 linecolor rgb "black" title "verification
      "fig12_slices_tmax.dat" index 0 using 1:2 with lines linewidth 2.5 linecolor rgb "#1b9e77" title "Rmax 0.96 m", \
      "fig12_slices_tmax.dat" index 1 using 1:4:5 with filledcurves fillcolor rgb "#d95f02" fillstyle transparent solid 0.15 noborder notitle, \
      "fig12_slices_tmax.dat" index 1 using 1:3 with points pointtype 7 pointsize 0.5 linecolor rgb "#d95f02" notitle, \
-     "fig12_slices_tmax.dat" index 1 using 1:2 with lines linewidth 2.5 linecolor rgb "#d95f02" title "Rmax 1.01 m", \
+     "fig12_slices_tmax.dat" index 1 using 1:2 with lines linewidth 2.5 linecolor rgb "#d95f02" title "Rmax 1 m", \
      "fig12_slices_tmax.dat" index 2 using 1:4:5 with filledcurves fillcolor rgb "#7570b3" fillstyle transparent solid 0.15 noborder notitle, \
      "fig12_slices_tmax.dat" index 2 using 1:3 with points pointtype 7 pointsize 0.5 linecolor rgb "#7570b3" notitle, \
      "fig12_slices_tmax.dat" index 2 using 1:2 with lines linewidth 2.5 linecolor rgb "#7570b3" title "Rmax 1.05 m", \
      "fig12_slices_tmax.dat" index 3 using 1:4:5 with filledcurves fillcolor rgb "#e7298a" fillstyle transparent solid 0.15 noborder notitle, \
      "fig12_slices_tmax.dat" index 3 using 1:3 with points pointtype 7 pointsize 0.5 linecolor rgb "#e7298a" notitle, \
-     "fig12_slices_tmax.dat" index 3 using 1:2 with lines linewidth 2.5 linecolor rgb "#e7298a" title "Rmax 1.1 m"
+     "fig12_slices_tmax.dat" index 3 using 1:2 with lines linewidth 2.5 linecolor rgb "#e7298a" title "Rmax 1.09 m"
 set terminal svg size 1000,620 noenhanced font "DejaVu Sans,11" background "white"
 set output "fig12_slices_tmax.svg"
 plot keyentry with lines linewidth 2.5 linecolor rgb "black" title "verification", \
@@ -34,11 +34,11 @@ plot keyentry with lines linewidth 2.5 linecolor rgb "black" title "verification
      "fig12_slices_tmax.dat" index 0 using 1:2 with lines linewidth 2.5 linecolor rgb "#1b9e77" title "Rmax 0.96 m", \
      "fig12_slices_tmax.dat" index 1 using 1:4:5 with filledcurves fillcolor rgb "#d95f02" fillstyle transparent solid 0.15 noborder notitle, \
      "fig12_slices_tmax.dat" index 1 using 1:3 with points pointtype 7 pointsize 0.5 linecolor rgb "#d95f02" notitle, \
-     "fig12_slices_tmax.dat" index 1 using 1:2 with lines linewidth 2.5 linecolor rgb "#d95f02" title "Rmax 1.01 m", \
+     "fig12_slices_tmax.dat" index 1 using 1:2 with lines linewidth 2.5 linecolor rgb "#d95f02" title "Rmax 1 m", \
      "fig12_slices_tmax.dat" index 2 using 1:4:5 with filledcurves fillcolor rgb "#7570b3" fillstyle transparent solid 0.15 noborder notitle, \
      "fig12_slices_tmax.dat" index 2 using 1:3 with points pointtype 7 pointsize 0.5 linecolor rgb "#7570b3" notitle, \
      "fig12_slices_tmax.dat" index 2 using 1:2 with lines linewidth 2.5 linecolor rgb "#7570b3" title "Rmax 1.05 m", \
      "fig12_slices_tmax.dat" index 3 using 1:4:5 with filledcurves fillcolor rgb "#e7298a" fillstyle transparent solid 0.15 noborder notitle, \
      "fig12_slices_tmax.dat" index 3 using 1:3 with points pointtype 7 pointsize 0.5 linecolor rgb "#e7298a" notitle, \
-     "fig12_slices_tmax.dat" index 3 using 1:2 with lines linewidth 2.5 linecolor rgb "#e7298a" title "Rmax 1.1 m"
+     "fig12_slices_tmax.dat" index 3 using 1:2 with lines linewidth 2.5 linecolor rgb "#e7298a" title "Rmax 1.09 m"
 unset output
