@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <functional>
 #include <set>
 #include <tuple>
@@ -406,10 +405,10 @@ class Detector {
       std::vector<std::string> found;
       for (const auto& [a, b] : legs_of(r, s, entries)) leg_traps(a, b, walls, part, body, reach, narrow, found);
       // The mission's legs are where the robot believes it drives; a run
-      // drives them shifted by the odometry error it has gathered, which the
-      // evaluation predicts at each entry (gen_7082: a mean of 0.67 m at its
-      // fourth leg's start put 15 % of the runs against the end of a 2.15 m
-      // gap the believed leg passes clear of).
+      // drives them moved by the pose error it has gathered, which the
+      // evaluation predicts at each entry (gen_7082: robot1's fourth leg
+      // crosses a 2.15 m doorway in its middle as written, and 15 % of the
+      // runs ended pinned on the doorway's wall after three legs and a spin).
       if (found.empty()) {
         for (const LegEntryRecord& e : o_.leg_entries) {
           if (e.robot != i || e.state != s) continue;
