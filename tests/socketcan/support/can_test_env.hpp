@@ -57,8 +57,6 @@ inline std::string read_text(const std::string& path) {
   return ss.str();
 }
 
-inline std::string scratch_file(const std::string& stem) { return scratch_path(stem); }
-
 inline std::int64_t steady_us() {
   return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now().time_since_epoch())
       .count();
@@ -69,7 +67,7 @@ inline std::int64_t steady_us() {
 class Child : public ChildProcess {
  public:
   explicit Child(std::vector<std::string> argv, bool with_stdin_pipe = false)
-      : ChildProcess(std::move(argv), scratch_file("child.log"), with_stdin_pipe) {}
+      : ChildProcess(std::move(argv), scratch_path("child.log"), with_stdin_pipe) {}
   Child(const Child&) = delete;
   Child& operator=(const Child&) = delete;
   ~Child() {

@@ -4,7 +4,6 @@
 // that cannot be compared.
 
 #include <doctest/doctest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>

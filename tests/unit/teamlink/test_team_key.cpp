@@ -15,7 +15,7 @@ using hal::TeamKey;
 
 namespace {
 
-std::string temp_path(const std::string& stem) { return p3at::test::scratch_path(stem); }
+using p3at::test::scratch_path;
 
 /// Writes a key file readable by its owner only (as a key file must be).
 void write_text(const std::string& path, const std::string& text) {
@@ -61,13 +61,13 @@ TEST_CASE("short, long and non-hex keys are errors naming the file and the probl
 }
 
 TEST_CASE("load_team_key: missing file is not_found naming it; a good file loads") {
-  const std::string missing = temp_path("missing.key");
+  const std::string missing = scratch_path("missing.key");
   auto none = hal::load_team_key(missing);
   REQUIRE_FALSE(none.ok());
   CHECK(none.error().code == Error::Code::not_found);
   CHECK(none.error().message.find(missing) != std::string::npos);
 
-  const std::string path = temp_path("good.key");
+  const std::string path = scratch_path("good.key");
   write_text(path, kHex + "\n");
   auto key = hal::load_team_key(path);
   REQUIRE(key.ok());
@@ -86,7 +86,7 @@ TEST_CASE("load_team_key: missing file is not_found naming it; a good file loads
 }
 
 TEST_CASE("key files: only a regular file readable by its owner only, never all zeros; a FIFO does not block") {
-  const std::string path = temp_path("strict.key");
+  const std::string path = scratch_path("strict.key");
   write_text(path, kHex + "\n");
   REQUIRE(hal::load_team_key(path).ok());
   for (const ::mode_t mode : {0640u, 0604u, 0660u, 0644u}) {
@@ -103,7 +103,7 @@ TEST_CASE("key files: only a regular file readable by its owner only, never all 
   ::unlink(path.c_str());
 
   // A FIFO with no writer: refused at once (it used to block for ever).
-  const std::string fifo = temp_path("fifo.key");
+  const std::string fifo = scratch_path("fifo.key");
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
   auto from_fifo = hal::load_team_key(fifo);
   REQUIRE_FALSE(from_fifo.ok());
@@ -130,7 +130,7 @@ TEST_CASE("generated keys differ, are written with mode 0600 and read back; no s
   CHECK(hal::team_key_fingerprint(a.value()).size() == 16);
   CHECK(hal::team_key_fingerprint(a.value()) == hal::team_key_fingerprint(TeamKey(a->bytes())));
 
-  const std::string path = temp_path("new.key");
+  const std::string path = scratch_path("new.key");
   REQUIRE(hal::write_team_key_file(path, a.value(), false).ok());
   struct stat st {};
   REQUIRE(::stat(path.c_str(), &st) == 0);

@@ -8,7 +8,6 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>

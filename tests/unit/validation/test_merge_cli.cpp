@@ -9,7 +9,6 @@
 
 #include <doctest/doctest.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -30,7 +29,7 @@ using Outcome = p3at::test::CommandOutcome;
 const std::string kMission = std::string(P3AT_SOURCE_DIR) + "/examples/relay/mission.yaml";
 const std::string kWorld = std::string(P3AT_SOURCE_DIR) + "/examples/relay/world.yaml";
 
-std::string scratch(const std::string& stem) { return p3at::test::scratch_path(stem); }
+using p3at::test::scratch_path;
 
 // The built vipars with `args` (already shell-quoted where needed).
 Outcome vipars(const std::string& args) { return p3at::test::run_command("'" + std::string(P3AT_VIPARS_BIN) + "' " + args); }
@@ -43,7 +42,7 @@ std::string campaign(const std::string& extra) {
 std::vector<std::string> make_parts(const std::string& extra, int shards) {
   std::vector<std::string> parts;
   for (int i = 0; i < shards; ++i) {
-    parts.push_back(scratch("shard-" + std::to_string(i) + ".part"));
+    parts.push_back(scratch_path("shard-" + std::to_string(i) + ".part"));
     const Outcome o = vipars(campaign(extra) + " --jobs 1 --shard " + std::to_string(i) + "/" + std::to_string(shards) +
                              " --part '" + parts.back() + "'");
     REQUIRE_MESSAGE(o.status == 0, o.err);
@@ -65,7 +64,7 @@ void remove_all(const std::vector<std::string>& files) {
 
 // Unsharded and merged: JSON, CSV and text byte for byte.
 void check_merge_is_unsharded(const std::string& extra, int shards, const std::vector<int>& order) {
-  const std::string whole_csv = scratch("whole.csv"), merged_csv = scratch("merged.csv");
+  const std::string whole_csv = scratch_path("whole.csv"), merged_csv = scratch_path("merged.csv");
   const Outcome whole_json = vipars(campaign(extra) + " --json --csv '" + whole_csv + "'");
   const Outcome whole_text = vipars(campaign(extra));
   const auto parts = make_parts(extra, shards);
@@ -110,7 +109,7 @@ TEST_CASE("merge refuses a damaged part, another campaign, a shard twice and a m
   SUBCASE("a damaged part is named") {
     std::string text = read_file(parts[1]);
     text[text.size() / 2] = text[text.size() / 2] == '1' ? '2' : '1';
-    const std::string damaged = scratch("damaged.part");
+    const std::string damaged = scratch_path("damaged.part");
     write_file(damaged, text);
     const Outcome o = vipars("merge '" + parts[0] + "' '" + damaged + "' '" + parts[2] + "'");
     CHECK(o.status == 2);
@@ -123,7 +122,7 @@ TEST_CASE("merge refuses a damaged part, another campaign, a shard twice and a m
     std::remove(damaged.c_str());
   }
   SUBCASE("a part of another campaign (seed, grid) is named") {
-    const std::string other = scratch("other.part");
+    const std::string other = scratch_path("other.part");
     for (const std::string& change : {std::string("--seed 5"), std::string("--rmax-range 0.1:0.4:0.1")}) {
       std::string args = "validate '" + kMission + "' --world '" + kWorld + "' --trials 9 " +
                          (change.find("--seed") == 0 ? change : "--seed 4 " + change);
@@ -145,7 +144,7 @@ TEST_CASE("merge refuses a damaged part, another campaign, a shard twice and a m
 }
 
 TEST_CASE("--shard and --part misuse is bad input naming the flag") {
-  const std::string part = scratch("x.part");
+  const std::string part = scratch_path("x.part");
   for (const auto& [args_text, message] : std::vector<std::pair<std::string, std::string>>{
            {"--shard 1/3", "--shard and --part: expected both or neither"},
            {"--part '" + part + "'", "--shard and --part: expected both or neither"},
@@ -176,7 +175,7 @@ nlohmann::json without_seconds(const std::string& text) {
 }  // namespace
 
 TEST_CASE("a cross-check campaign sharded by mission merges into the unsharded campaign's results") {
-  const std::string out = scratch("crosscheck-out");
+  const std::string out = scratch_path("crosscheck-out");
   // Two one-robot missions whose verify is quick (seeds 7 and 8: 0.3 s of
   // CPU for the campaign in release), few runs and a small grid: the merge is
   // what is tested, and the test runs under ASan at -O0 in CI too.
@@ -191,7 +190,7 @@ TEST_CASE("a cross-check campaign sharded by mission merges into the unsharded c
   REQUIRE(std::system(("rm -rf '" + out + "'").c_str()) == 0);
   std::vector<std::string> parts;
   for (int i = 0; i < 2; ++i) {
-    parts.push_back(scratch("crosscheck-" + std::to_string(i) + ".part"));
+    parts.push_back(scratch_path("crosscheck-" + std::to_string(i) + ".part"));
     const Outcome o = vipars(flags + " --shard " + std::to_string(i) + "/2 --part '" + parts.back() + "'");
     REQUIRE_MESSAGE(o.status == 0, o.err);
   }

@@ -1,7 +1,6 @@
 // The checksummed part file every shard's part is (team_sim/part_file.hpp):
 // shared by validation and cross-check parts, so tested once here.
 #include <doctest/doctest.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>

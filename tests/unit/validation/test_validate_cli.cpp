@@ -6,7 +6,6 @@
 
 #include <doctest/doctest.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdint>
 #include <cstdio>
@@ -28,7 +27,7 @@ using Outcome = p3at::test::CommandOutcome;
 const std::string kMission = std::string(P3AT_SOURCE_DIR) + "/examples/relay/mission.yaml";
 const std::string kWorld = std::string(P3AT_SOURCE_DIR) + "/examples/relay/world.yaml";
 
-std::string scratch(const std::string& stem) { return p3at::test::scratch_path(stem); }
+using p3at::test::scratch_path;
 
 // Runs vipars with `args` (already shell-quoted where needed); stdout and
 // stderr captured separately (stderr carries timing, stdout must not).
@@ -56,7 +55,7 @@ std::vector<std::string> keys(const Json& object) {
 
 TEST_CASE("output and CSV are byte-identical on 1 and 3 threads") {
   const std::string grid = "--trials 12 --seed 5 --tmax-range 20:40:5 --rmax-range 0.1:0.5:0.1";
-  const std::string csv1 = scratch("j1.csv"), csv3 = scratch("j3.csv");
+  const std::string csv1 = scratch_path("j1.csv"), csv3 = scratch_path("j3.csv");
   const Outcome j1 = vipars(validate_args(grid + " --jobs 1 --json --csv '" + csv1 + "'"));
   const Outcome j3 = vipars(validate_args(grid + " --jobs 3 --json --csv '" + csv3 + "'"));
   CHECK(j1.status == 0);
@@ -79,7 +78,7 @@ TEST_CASE("output and CSV are byte-identical on 1 and 3 threads") {
 }
 
 TEST_CASE("JSON: exactly the keys shared with verify, shapes, and the CSV's counts") {
-  const std::string csv = scratch("runs.csv");
+  const std::string csv = scratch_path("runs.csv");
   const Outcome o = vipars(validate_args("--trials 10 --seed 9 --jobs 2 --tmax 25 --rmax 0.3 --json "
                                          "--tmax-range 20:30:5 --rmax-range 0.1:0.4:0.1 --csv '" + csv + "'"));
   REQUIRE(o.status == 0);
@@ -180,7 +179,7 @@ TEST_CASE("bad input: exit status 2 and a message that says what is wrong") {
   CHECK(missing.status == 2);
   CHECK(missing.err.find("/nonexistent/m.yaml") != std::string::npos);
 
-  const std::string bad_mission = scratch("bad.yaml");
+  const std::string bad_mission = scratch_path("bad.yaml");
   {
     std::ofstream f(bad_mission);
     f << "mission:\n  name: x\n  colour: red\n";
@@ -207,7 +206,7 @@ TEST_CASE("bad input: exit status 2 and a message that says what is wrong") {
 }
 
 TEST_CASE("a run replays alone with vipars simulate from its CSV seed") {
-  const std::string validate_csv = scratch("v.csv"), simulate_csv = scratch("s.csv");
+  const std::string validate_csv = scratch_path("v.csv"), simulate_csv = scratch_path("s.csv");
   REQUIRE(vipars(validate_args("--trials 4 --seed 11 --csv '" + validate_csv + "'")).status == 0);
   const auto row = split(split(read_file(validate_csv), '\n').at(4), ',');  // run 3
   REQUIRE(row.size() == 9);

@@ -16,7 +16,6 @@
 // release and minutes under the sanitizers.
 #include <doctest/doctest.h>
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>

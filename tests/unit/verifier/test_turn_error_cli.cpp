@@ -9,7 +9,6 @@
 // 0.452) and 0.276 m on gen_1166 (runs: 0.469). About 3 s.
 #include <doctest/doctest.h>
 
-#include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
