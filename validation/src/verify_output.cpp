@@ -107,6 +107,7 @@ nlohmann::json verify_json(const mission::Mission& mission, const verifier::Veri
   j["criteria"] = criteria;
   j["failed"] = r.failed;
   j["pruned_mass"] = r.pruned_mass;
+  j["budget_merged_mass"] = r.budget_merged_mass;
   j["blocked_mass"] = r.blocked_mass;
   nlohmann::json blocked = nlohmann::json::array();
   for (const verifier::BlockedRobot& b : r.blocked) {
@@ -176,6 +177,10 @@ std::string verify_text(const mission::Mission& mission, const verifier::VerifyR
   if (r.pruned_mass > 0.0 || r.blocked_mass > 0.0) {
     s += "  probability mass pruned " + format_scientific(r.pruned_mass, 2) + ", blocked (never finishes) " +
          format_scientific(r.blocked_mass, 2) + "\n";
+  }
+  if (r.budget_merged_mass > 0.0) {
+    s += "  probability mass merged over the branch budget " + format_scientific(r.budget_merged_mass, 2) +
+         " (budget.max_branches; places merged coarsely)\n";
   }
   for (const verifier::BlockedRobot& b : r.blocked) {
     if (b.robot < r.robots.size() && !r.robots[b.robot].finishes) continue;  // said above

@@ -152,6 +152,7 @@ class Detector {
     }
     races();
     concurrent_legs();
+    budget_merges();
     std::stable_sort(out_.begin(), out_.end(), [](const Approximation& a, const Approximation& b) {
       return std::tie(a.robot, a.kind, a.index) < std::tie(b.robot, b.kind, b.index);
     });
@@ -466,6 +467,16 @@ class Detector {
           "its leg " + pt(a) + "-" + pt(b) + " " + how + " " + t.name + "'s leg in '" + t.states[c.teammate_state].name +
               "' " + pt(e) + "-" + pt(f) + ", driven at the same time (avoidance reach " + num(reach, 2) +
               " m): neither evaluation sees the other drive (a teammate is an obstacle only where it stands still)");
+    }
+  }
+
+  void budget_merges() {
+    for (const BudgetMerge& b : o_.budget_merges) {
+      add(ApproximationKind::places_merged_over_budget, b.robot, MissionElement::state, b.state,
+          "its places (where messages found it) were merged into fewer to keep within the branch budget "
+          "(budget.max_branches " + std::to_string(models_.budget.max_branches) + "; " +
+              num(o_.budget_merged_mass, 3) + " of the finished mass went through such merges): where it is, "
+              "and so its later legs, is pictured more coarsely than the model otherwise does");
     }
   }
 

@@ -246,6 +246,7 @@ Result<VerifyResult> verify_outcome(const mission::Mission& mission, const Model
   r.p_radius = std::clamp(p.radius, 0.0, 1.0);
   r.p_joint = std::clamp(p.joint, 0.0, 1.0);
   r.pruned_mass = o.pruned_mass;
+  r.budget_merged_mass = o.budget_merged_mass;
   r.blocked_mass = o.blocked_mass;
   r.loop_cutoff_mass = o.loop_cutoff_mass;
   r.work_cutoff_mass = o.work_cutoff_mass;

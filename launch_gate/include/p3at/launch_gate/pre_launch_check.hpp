@@ -52,7 +52,8 @@ enum class CheckStatus {
   /// (CheckRequest::accept_unvouched). One the mission file and models show by
   /// themselves refuses it before any evaluation (CheckReport::
   /// refused_before_evaluation); one only the evaluation finds (robots racing,
-  /// teammates driving near the path) refuses a GO, and a NO-GO stays no_go.
+  /// teammates driving near the path, places merged over the branch budget)
+  /// refuses a GO, and a NO-GO stays no_go.
   cannot_evaluate,
 };
 /// "GO", "NO-GO", "bad-input", "no-models", "cannot-run", "cannot-evaluate"

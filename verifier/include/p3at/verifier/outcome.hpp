@@ -132,6 +132,14 @@ struct ConcurrentLegs {
   double tx0_m = 0.0, ty0_m = 0.0, tx1_m = 0.0, ty1_m = 0.0; ///< teammate's leg (from where it is now)
 };
 
+/// To keep within Budget::max_branches, branches that differed only in where
+/// robot `robot` was (the bins of a message interrupting it; in `state` when
+/// merged) were merged into one place (approximations.hpp,
+/// `places-merged-over-budget`). One record per (robot, state).
+struct BudgetMerge {
+  std::size_t robot = 0, state = 0;
+};
+
 /// Robot `robot` entered GoToGuarded state `state` from odometry position
 /// (x0_m, y0_m) with this predicted pose error (true minus odometry: x, y,
 /// heading; its mean and covariance). The model steps its paths at the mean
@@ -148,6 +156,9 @@ struct LegEntryRecord {
 struct SystemOutcome {
   std::vector<Branch> branches;   ///< weights sum to 1 - pruned_mass - blocked_mass
   double pruned_mass = 0.0;       ///< ordering mass dropped to keep within Budget::max_branches
+  /// The finished branches' mass whose places were merged to keep within
+  /// Budget::max_branches (BudgetMerge): not lost, pictured more coarsely.
+  double budget_merged_mass = 0.0;
   double blocked_mass = 0.0;      ///< mass of branches where some robot can never finish (deadlock)
   /// Mass of the laps of an FSA loop beyond the budget (a robot entering the
   /// same state more than Budget::max_events / 100 times, at least once, in one
@@ -163,6 +174,7 @@ struct SystemOutcome {
   std::vector<RaceRecord> races;               ///< events with three or more plausible first robots
   std::vector<ConcurrentLegs> concurrent_legs; ///< pairs of legs driven at the same time
   std::vector<LegEntryRecord> leg_entries;     ///< odometry errors at GoToGuarded entries
+  std::vector<BudgetMerge> budget_merges;      ///< robots whose places were merged over the budget
 };
 
 }  // namespace p3at::verifier

@@ -100,6 +100,7 @@ struct VerifyResult {
   std::optional<Grid> grid;
   std::vector<CriterionVerdict> criteria;
   double pruned_mass = 0.0;
+  double budget_merged_mass = 0.0;  ///< SystemOutcome::budget_merged_mass (not lost: merged coarsely)
   double blocked_mass = 0.0;
   double loop_cutoff_mass = 0.0;  ///< SystemOutcome::loop_cutoff_mass
   double work_cutoff_mass = 0.0;  ///< SystemOutcome::work_cutoff_mass (counted as failure)
