@@ -1348,8 +1348,8 @@ class Sequencer {
         merge_into(merged[*into], b);
       }
     }
-    std::stable_sort(merged.begin(), merged.end(),
-                     [](const BranchState& a, const BranchState& b) { return a.weight > b.weight; });
+    const auto heavier_first = [](const BranchState& a, const BranchState& b) { return a.weight > b.weight; };
+    std::stable_sort(merged.begin(), merged.end(), heavier_first);
     const std::size_t keep = std::max<std::size_t>(1, models_.budget.max_branches);
     if (merged.size() <= keep) return merged;
     // Over the budget. Dropping a branch counts its mass as failure, and a
@@ -1364,14 +1364,18 @@ class Sequencer {
     // merged this way are a coarser picture of where the robots are, not a
     // lost one; the mass so merged is reported (budget_merged_mass) and makes
     // the answer one the gate does not vouch for.
+    std::vector<std::string> keys_but_bins(merged.size());
     std::map<std::string, std::vector<std::size_t>> by_places;
-    for (std::size_t m = 0; m < merged.size(); ++m) by_places[configuration_key(merged[m], false)].push_back(m);
+    for (std::size_t m = 0; m < merged.size(); ++m) {
+      keys_but_bins[m] = configuration_key(merged[m], false);
+      by_places[keys_but_bins[m]].push_back(m);
+    }
     std::vector<bool> joined(merged.size(), false);
     std::size_t left = merged.size();
     for (std::size_t m = merged.size(); m-- > 1 && left > keep;) {
       std::size_t nearest = m;
       double nearest_d2 = std::numeric_limits<double>::infinity();
-      for (const std::size_t into : by_places[configuration_key(merged[m], false)]) {
+      for (const std::size_t into : by_places[keys_but_bins[m]]) {
         if (into >= m) continue;  // heavier ones only (sorted), none of them joined yet
         double d2 = 0.0;
         for (std::size_t i = 0; i < merged[m].robots.size(); ++i) {
@@ -1391,7 +1395,7 @@ class Sequencer {
     for (std::size_t m = 0; m < merged.size(); ++m) {
       if (!joined[m]) kept.push_back(std::move(merged[m]));
     }
-    std::stable_sort(kept.begin(), kept.end(), [](const BranchState& a, const BranchState& b) { return a.weight > b.weight; });
+    std::stable_sort(kept.begin(), kept.end(), heavier_first);
     while (kept.size() > keep) {
       outcome_.pruned_mass += kept.back().weight;
       kept.pop_back();
