@@ -1,8 +1,8 @@
 // A teammate waiting for a message that is already on its way is not a wall
 // (engine/sequencer.cpp, released_in): it drives off when the message lands.
 // tests/data/accuracy/released_teammate: robot1 sends robot2 off and drives
-// east through the edge of the place where robot2 waited; robot2 is 3.5 m
-// north by the time robot1 gets there. robot1's leg must come out as if
+// east through the edge of the place where robot2 waited; robot2 is at its
+// goal, 3.6 m north, by the time robot1 gets there. robot1's leg must come out as if
 // robot2 had never stood in its way. The same mission against 1,000
 // validation runs is in the accuracy gate (tests/unit/crosscheck).
 #include <doctest/doctest.h>
