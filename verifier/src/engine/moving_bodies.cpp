@@ -34,6 +34,16 @@ double point_segment_distance(double px, double py, double ax, double ay, double
   return std::hypot(px - (ax + t * dx), py - (ay + t * dy));
 }
 
+// Whether a body centred at p is surely beyond reach_m of (x, y): its centre
+// farther than reach_m plus the body's half-diagonal. Squared and with a part
+// in 1e9 of slack, so it is cheap and never passes over a body the exact
+// distance_to_body test would have found within reach.
+bool surely_beyond(const BodyPose& p, double x_m, double y_m, double reach_m) {
+  const double dx = x_m - p.x_m, dy = y_m - p.y_m;
+  const double limit = reach_m + kHalfDiagonalM;
+  return dx * dx + dy * dy > limit * limit * (1.0 + 1e-9);
+}
+
 }  // namespace
 
 double distance_to_body(const BodyPose& pose, double x_m, double y_m) {
@@ -156,7 +166,7 @@ bool passes_near(const MovingBody& body, double ax, double ay, double bx, double
 bool MovingBodies::within(std::size_t cycle, double x_m, double y_m, double reach_m) const {
   for (const MovingBody& b : bodies_) {
     const BodyPose* p = b.at(cycle);
-    if (p == nullptr || std::hypot(x_m - p->x_m, y_m - p->y_m) > reach_m + kHalfDiagonalM) continue;
+    if (p == nullptr || surely_beyond(*p, x_m, y_m, reach_m)) continue;
     if (distance_to_body(*p, x_m, y_m) <= reach_m) return true;
   }
   return false;
@@ -166,7 +176,7 @@ void MovingBodies::append_within(std::size_t cycle, double x_m, double y_m, doub
                                  std::vector<Segment>& out) const {
   for (const MovingBody& b : bodies_) {
     const BodyPose* p = b.at(cycle);
-    if (p == nullptr || std::hypot(x_m - p->x_m, y_m - p->y_m) > reach_m + kHalfDiagonalM) continue;
+    if (p == nullptr || surely_beyond(*p, x_m, y_m, reach_m)) continue;
     if (distance_to_body(*p, x_m, y_m) > reach_m) continue;
     const auto sides = body_segments(p->x_m, p->y_m, p->theta_rad);
     out.insert(out.end(), sides.begin(), sides.end());

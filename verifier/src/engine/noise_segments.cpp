@@ -363,6 +363,7 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
       std::vector<TrajectoryPoint>* trace =
           (record != nullptr && segment == 0) ? &record->paths[job.slot] : nullptr;
       if (trace != nullptr) record->weights[job.slot] = w.weight;
+      const exec::Vec2<double> direction{std::cos(job.angle), std::sin(job.angle)};
       for (;;) {
         if (trace != nullptr) {
           if (trace->size() >= 2 && at_rest(w.q) && at_rest(trace->back().base)) {
@@ -389,7 +390,7 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
           break;
         }
         sample(w);
-        stepper.step(w, job.angle);
+        stepper.step(w, direction);
         ++out.cycles_simulated;
       }
     }

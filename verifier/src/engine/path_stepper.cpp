@@ -41,6 +41,12 @@ PathStepper::PathStepper(const StateContext& context, std::size_t state)
   // plus a little for rounding.
   constexpr double kSonarOffsetM = 0.3;
   avoid_reach_m_ = go_ ? k.robot_radius_m + go_->safety_margin_m + go_->sphere_m + kSonarOffsetM + 0.05 : 0.0;
+  // How far the rays need casting: a reading r puts its obstacle point at
+  // least r minus the ring's offset from the robot's odometric centre, so one
+  // beyond avoid_reach_m_ + 0.5 lies more than half a metre outside contact
+  // distance plus sphere, where AVOID_OBSTACLES skips a point outright. It
+  // may as well read "nothing seen": the command is the same to the bit.
+  cast_m_ = avoid_reach_m_ + 0.5;
 }
 
 std::optional<std::size_t> PathStepper::fired(const Walker& w) const {
@@ -96,7 +102,7 @@ double PathStepper::settle_phase(Walker& w, std::size_t transition, double* cros
 }
 
 bool PathStepper::obstacle_within(const Walker& w, double x_m, double y_m, double reach_m) const {
-  return nearest_distance(ctx_.obstacles, x_m, y_m) <= reach_m ||
+  return any_within(ctx_.obstacles, x_m, y_m, reach_m) ||
          (ctx_.movers && ctx_.movers->within(w.cycles, x_m, y_m, reach_m));
 }
 
@@ -106,7 +112,7 @@ bool PathStepper::delicate(const Walker& w) const {
   return obstacle_within(w, w.q.x_m + w.error.mean(0), w.q.y_m + w.error.mean(1), avoid_reach_m_ + 0.5);
 }
 
-void PathStepper::step(Walker& w, double noise_angle_rad) const {
+void PathStepper::step(Walker& w, const exec::Vec2<double>& noise_direction) const {
   const Kinematics& k = ctx_.model->kinematics;
   double trans = 0.0, rot = 0.0;
   if (go_) {
@@ -122,17 +128,16 @@ void PathStepper::step(Walker& w, double noise_angle_rad) const {
     // cycle (engine/moving_bodies.hpp); for the same reason only the bodies
     // within reach are added to the segments the rays are cast against.
     const bool mates_near = ctx_.movers && ctx_.movers->within(w.cycles, tx, ty, avoid_reach_m_);
-    if (mates_near || nearest_distance(ctx_.obstacles, tx, ty) <= avoid_reach_m_) {
+    if (mates_near || any_within(ctx_.obstacles, tx, ty, avoid_reach_m_)) {
       std::vector<Segment> with_mates;
       if (mates_near) {
         with_mates = ctx_.obstacles;
         ctx_.movers->append_within(w.cycles, tx, ty, avoid_reach_m_, with_mates);
       }
-      const auto ranges = sonar_ranges(mates_near ? with_mates : ctx_.obstacles, tx, ty, tth, max_range_m_);
+      const auto ranges = sonar_ranges(mates_near ? with_mates : ctx_.obstacles, tx, ty, tth, max_range_m_, cast_m_);
       obstacles = exec::sonar_obstacles(std::span<const double, exec::kP3atSonarCount>(ranges), pose, max_range_m_);
     }
-    const exec::Vec2<double> noise{std::cos(noise_angle_rad), std::sin(noise_angle_rad)};
-    const exec::Velocity<double> v = exec::go_to_guarded(*go_, pose, obstacles.view(), noise, config_);
+    const exec::Velocity<double> v = exec::go_to_guarded(*go_, pose, obstacles.view(), noise_direction, config_);
     trans = v.trans_mps;
     rot = v.rot_radps;
   } else if (spin_) {

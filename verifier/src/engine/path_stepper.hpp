@@ -59,8 +59,9 @@ class PathStepper {
   /// odometry's random error (Walker::at_goal_jitter_var, turn_jitter_var), else 0.
   double settle_phase(Walker& w, std::size_t transition, double* crossing_c = nullptr,
                       Eigen::Vector3d* step = nullptr, double* crossing_sd = nullptr) const;
-  /// One cycle under NOISE direction `noise_angle_rad`.
-  void step(Walker& w, double noise_angle_rad) const;
+  /// One cycle under the NOISE direction (cos a, sin a) of the walker's
+  /// angle a: it holds one for many cycles, so its caller computes them once.
+  void step(Walker& w, const exec::Vec2<double>& noise_direction) const;
 
   /// Where the flow is strongly nonlinear in the pose: within the goal's
   /// slow-down (dropoff plus half a metre) or within AVOID_OBSTACLES' reach
@@ -87,6 +88,7 @@ class PathStepper {
   std::size_t sample_every_ = 10;
   double max_range_m_ = 5.0;
   double avoid_reach_m_ = 0.0;
+  double cast_m_ = 5.0;
 };
 
 }  // namespace p3at::verifier::engine

@@ -29,12 +29,25 @@ std::vector<Segment> segments_near(const std::vector<Segment>& all, double from_
 /// The distance from (x, y) to the nearest segment (infinity if none).
 double nearest_distance(const std::vector<Segment>& segments, double x_m, double y_m);
 
+/// Whether some segment is within reach_m of (x, y): the same answer as
+/// nearest_distance(segments, x, y) <= reach_m, without its square roots
+/// (asked every cycle of every walker).
+bool any_within(const std::vector<Segment>& segments, double x_m, double y_m, double reach_m);
+
 /// The four sides of a Pioneer 3-AT body at pose (x, y, theta).
 std::array<Segment, 4> body_segments(double x_m, double y_m, double theta_rad);
 
 /// Ranges of the 16 sonars for a robot at the true pose (x, y, theta); a ray
 /// that hits nothing within max_range_m reads max_range_m ("nothing seen").
+/// With cast_m below max_range_m, rays are cast only that far and what lies
+/// beyond reads max_range_m too: for a caller to which nothing that far can
+/// matter (AVOID_OBSTACLES beyond its reach), and much cheaper.
 std::array<double, exec::kP3atSonarCount> sonar_ranges(const std::vector<Segment>& segments, double x_m, double y_m,
-                                                       double theta_rad, double max_range_m);
+                                                       double theta_rad, double max_range_m, double cast_m);
+
+inline std::array<double, exec::kP3atSonarCount> sonar_ranges(const std::vector<Segment>& segments, double x_m,
+                                                              double y_m, double theta_rad, double max_range_m) {
+  return sonar_ranges(segments, x_m, y_m, theta_rad, max_range_m, max_range_m);
+}
 
 }  // namespace p3at::verifier::engine
