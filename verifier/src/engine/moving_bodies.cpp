@@ -35,13 +35,10 @@ double point_segment_distance(double px, double py, double ax, double ay, double
 }
 
 // Whether a body centred at p is surely beyond reach_m of (x, y): its centre
-// farther than reach_m plus the body's half-diagonal. Squared and with a part
-// in 1e9 of slack, so it is cheap and never passes over a body the exact
-// distance_to_body test would have found within reach.
+// farther than reach_m plus the body's half-diagonal (surely_longer: never
+// passes over a body the exact distance_to_body test would find within reach).
 bool surely_beyond(const BodyPose& p, double x_m, double y_m, double reach_m) {
-  const double dx = x_m - p.x_m, dy = y_m - p.y_m;
-  const double limit = reach_m + kHalfDiagonalM;
-  return dx * dx + dy * dy > limit * limit * (1.0 + 1e-9);
+  return surely_longer(x_m - p.x_m, y_m - p.y_m, reach_m + kHalfDiagonalM);
 }
 
 }  // namespace

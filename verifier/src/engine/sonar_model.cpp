@@ -30,20 +30,17 @@ double point_segment_distance(double px, double py, const Segment& s) {
 // rounding is a few parts in 1e16, the slack a part in 1e9), and only a point
 // within a hair of the edge pays for the exact, slow hypot.
 bool offset_within(double dx, double dy, double reach_m) {
-  const double d2 = dx * dx + dy * dy;
-  const double r2 = reach_m * reach_m;
-  if (d2 < r2 * (1.0 - 1e-9)) return true;
-  if (d2 > r2 * (1.0 + 1e-9)) return false;
+  if (dx * dx + dy * dy < reach_m * reach_m * (1.0 - 1e-9)) return true;
+  if (surely_longer(dx, dy, reach_m)) return false;
   return std::hypot(dx, dy) <= reach_m;
 }
 
-// The squared distance from (px, py) to the segment's bounding box: never
-// more than to the segment itself, and without a division, so a cheap first
-// test that a segment is out of reach.
-double box_distance2(double px, double py, const Segment& s) {
-  const double dx = std::max({std::min(s.x0, s.x1) - px, px - std::max(s.x0, s.x1), 0.0});
-  const double dy = std::max({std::min(s.y0, s.y1) - py, py - std::max(s.y0, s.y1), 0.0});
-  return dx * dx + dy * dy;
+// The offset from (px, py) to the segment's bounding box: never longer than
+// to the segment itself, and without a division, so a cheap first test that
+// a segment is out of reach.
+std::array<double, 2> offset_to_box(double px, double py, const Segment& s) {
+  return {std::max({std::min(s.x0, s.x1) - px, px - std::max(s.x0, s.x1), 0.0}),
+          std::max({std::min(s.y0, s.y1) - py, py - std::max(s.y0, s.y1), 0.0})};
 }
 
 // The farthest a sonar of the ring sits from the robot's centre.
@@ -101,9 +98,9 @@ double nearest_distance(const std::vector<Segment>& segments, double x_m, double
 bool any_within(const std::vector<Segment>& segments, double x_m, double y_m, double reach_m) {
   // Outside the sizes offset_within is exact for, ask the plain question.
   if (!(reach_m > 1e-100 && reach_m < 1e100)) return nearest_distance(segments, x_m, y_m) <= reach_m;
-  const double out2 = reach_m * reach_m * (1.0 + 1e-9);
   for (const Segment& s : segments) {
-    if (box_distance2(x_m, y_m, s) > out2) continue;
+    const auto [bx, by] = offset_to_box(x_m, y_m, s);
+    if (surely_longer(bx, by, reach_m)) continue;
     const auto [dx, dy] = offset_to_segment(x_m, y_m, s);
     if (offset_within(dx, dy, reach_m)) return true;
   }
@@ -154,9 +151,10 @@ std::array<double, exec::kP3atSonarCount> sonar_ranges(const std::vector<Segment
   for (const Segment& seg : segments) {
     const double ex = seg.x1 - seg.x0, ey = seg.y1 - seg.y0;
     if (cull && ex * ex + ey * ey < kCullableM * kCullableM) {
-      if (box_distance2(x_m, y_m, seg) > cull_m * cull_m) continue;
+      const auto [bx, by] = offset_to_box(x_m, y_m, seg);
+      if (surely_longer(bx, by, cull_m)) continue;
       const auto [dx, dy] = offset_to_segment(x_m, y_m, seg);
-      if (dx * dx + dy * dy > cull_m * cull_m) continue;
+      if (surely_longer(dx, dy, cull_m)) continue;
     }
     for (std::size_t i = 0; i < kRays; ++i) {
       const double t = ray_hit(ox[i], oy[i], cx[i], cy[i], seg, ranges[i]);

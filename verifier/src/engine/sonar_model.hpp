@@ -26,6 +26,15 @@ inline constexpr double kBodyHalfWidthM = 0.2525;
 std::vector<Segment> segments_near(const std::vector<Segment>& all, double from_x, double from_y, double to_x,
                                    double to_y, double reach_m);
 
+/// Whether the offset (dx, dy) is surely longer than limit_m: its square
+/// exceeds limit_m squared by more than rounding can account for (a part in
+/// 1e9 of slack). Never true of an offset whose length (std::hypot) is within
+/// limit_m, so a pre-filter built on it passes over only what an exact test
+/// would reject; and without a square root, for the hot loops.
+inline bool surely_longer(double dx, double dy, double limit_m) {
+  return dx * dx + dy * dy > limit_m * limit_m * (1.0 + 1e-9);
+}
+
 /// The distance from (x, y) to the nearest segment (infinity if none).
 double nearest_distance(const std::vector<Segment>& segments, double x_m, double y_m);
 
