@@ -7,7 +7,9 @@
 // on tests/data/final_distance/recall_at_start (gen_7093), a robot recalled
 // within a second of starting, whose recall's places merge into one branch;
 // on tests/data/final_distance/recall_redrawn (gen_7038), a robot recalled
-// under a NOISE redrawn every cycle. About 4 s.
+// under a NOISE redrawn every cycle; on tests/data/final_distance/
+// arc_after_noise (gen_7370), a leg without NOISE entered from the places a
+// redrawn NOISE left the robot in. About 4 s.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -143,4 +145,20 @@ TEST_CASE("a robot recalled mid-leg under a NOISE redrawn every cycle: the held 
   // (0.288 m against 0.088 m): read at the redrawn pace and brought to the
   // redrawn spread (engine/trajectory_pace.hpp).
   check_against_runs("recall_redrawn", 2, 0.03, Spread::checked);  // the runs' mean is known to ±0.005 m
+}
+
+TEST_CASE("a leg without NOISE entered from several places: its ends keep their arc around the goal") {
+  // gen_7370's robot1: leg1's redrawn NOISE leaves it anywhere on its AtGoal
+  // circle, and leg2 (no NOISE) drives from each of those places to about
+  // 0.25 m short of its goal, so the ends lie on an arc at nearly one
+  // distance. One slab for the leg made them one Gaussian blob: verify said
+  // 0.249 +- 0.043 m where the runs end 0.253 +- 0.012 m.
+  check_against_runs("arc_after_noise", 0, 0.01, Spread::checked);
+  // The arc is why: the final position spreads by 0.1 m across the way in,
+  // and a blob that wide would spread the distance by about 0.04 m.
+  const auto v = p3at::test::run_command(vipars() + " verify " + data("arc_after_noise", "mission.yaml") + " --models " +
+                                         data("arc_after_noise", "models.yaml") + " --json");
+  const nlohmann::json robot = nlohmann::json::parse(v.out).at("robots").at(0);
+  CHECK(robot.at("final_sd_m").get<double>() > 0.08);
+  CHECK(robot.at("dist_sd_m").get<double>() < 0.02);
 }

@@ -206,6 +206,9 @@ struct Track {
   Eigen::Matrix2d spread_points_within = Eigen::Matrix2d::Zero();
   Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
   std::vector<Eigen::Vector2d> spread_points;  ///< the points `spread` is the covariance of (may be empty)
+  /// Each spread point's probability (StateAnalysis::end_weights); empty
+  /// when they are equally likely.
+  std::vector<double> spread_weights;
   /// How much later than their mean each point's paths fired (seconds, the
   /// same order; StateAnalysis::end_delays); empty when not known.
   std::vector<double> spread_delays;
@@ -213,6 +216,7 @@ struct Track {
   /// own, and what they average away (StateAnalysis::rest_offsets): they
   /// replace spread_points on entering a state that stops the robot.
   std::vector<Eigen::Vector2d> rest_points;
+  std::vector<double> rest_weights;
   Eigen::Matrix2d rest_points_within = Eigen::Matrix2d::Zero();
   std::vector<double> rest_delays;
   StateAnalysis analysis;         ///< of the current state
@@ -422,15 +426,20 @@ class Sequencer {
       // along, so that the points stay centred on it and the moment-matched
       // final position is the mixture's.
       Eigen::Vector2d shift = Eigen::Vector2d::Zero();
-      for (const Eigen::Vector2d& p : track.rest_points) shift += p / static_cast<double>(track.rest_points.size());
+      for (std::size_t j = 0; j < track.rest_points.size(); ++j) {
+        shift += track.rest_weights.empty() ? Eigen::Vector2d(track.rest_points[j] / static_cast<double>(track.rest_points.size()))
+                                            : Eigen::Vector2d(track.rest_weights[j] * track.rest_points[j]);
+      }
       for (Eigen::Vector2d& p : track.rest_points) p -= shift;
       track.base.x_m += shift.x();
       track.base.y_m += shift.y();
       track.spread_points = std::move(track.rest_points);
+      track.spread_weights = std::move(track.rest_weights);
       track.spread_points_within = track.rest_points_within;
       track.spread_delays = std::move(track.rest_delays);
     }
     track.rest_points.clear();
+    track.rest_weights.clear();
     track.rest_delays.clear();
     if (record_entries_) entry_errors_.emplace(std::make_pair(i, state), track.error);
 
@@ -1185,9 +1194,11 @@ class Sequencer {
     if (t.analysis.sets_spread) {
       t.spread = t.analysis.end_spread;
       t.spread_points = t.analysis.end_offsets;
+      t.spread_weights = t.analysis.end_weights;
       t.spread_points_within = t.analysis.end_offsets_within;
       t.spread_delays = t.analysis.end_delays;
       t.rest_points = t.analysis.rest_offsets;
+      t.rest_weights = t.analysis.rest_weights;
       t.rest_points_within = t.analysis.rest_offsets_within;
       t.rest_delays = t.analysis.rest_delays;
       t.extra_cov.setZero();
@@ -1260,6 +1271,7 @@ class Sequencer {
       ti.error = bin.error;
       ti.spread = bin.spread;
       ti.spread_points = bin.offsets;
+      ti.spread_weights.clear();
       ti.spread_delays.clear();  // where a message stopped it, not when its paths arrived
       ti.extra_cov = bin.within + ahead * ahead * ti.extra_cov;
       ti.timeline.note(child.clock.mean(), ti.true_position(), kSeparationWindowS);
@@ -1326,7 +1338,8 @@ class Sequencer {
             g.mean = t.true_mean() + ends[e] + c.delta.head<2>();
             g.cov = common + c.cov.topLeftCorner<2, 2>();
             r.final_components.push_back(g);
-            r.final_weights.push_back(c.weight / static_cast<double>(ends.size()));
+            r.final_weights.push_back(c.weight * (t.spread_weights.empty() ? 1.0 / static_cast<double>(ends.size())
+                                                                           : t.spread_weights[e]));
             if (!scores.empty()) r.final_time_scores.push_back(scores[e]);
           }
         }
@@ -1519,6 +1532,26 @@ class Sequencer {
         }
         for (std::size_t j = 0; j < pa.size(); ++j) pa[j] = (wa * pa[j] + wb * pb[j]) / w;
       };
+      // Points' own weights blend alike (an empty list: equally likely).
+      const auto blend_weights = [&](std::vector<double>& qa, const std::vector<double>& qb, std::size_t n) {
+        if (qa.empty() && qb.empty()) return;
+        const auto at = [n](const std::vector<double>& q, std::size_t j) {
+          return q.size() == n ? q[j] : 1.0 / static_cast<double>(n);
+        };
+        std::vector<double> out(n);
+        for (std::size_t j = 0; j < n; ++j) out[j] = (wa * at(qa, j) + wb * at(qb, j)) / w;
+        qa = std::move(out);
+      };
+      if (ta.spread_points.size() == tb.spread_points.size()) {
+        blend_weights(ta.spread_weights, tb.spread_weights, ta.spread_points.size());
+      } else {
+        ta.spread_weights.clear();
+      }
+      if (ta.rest_points.size() == tb.rest_points.size()) {
+        blend_weights(ta.rest_weights, tb.rest_weights, ta.rest_points.size());
+      } else {
+        ta.rest_weights.clear();
+      }
       blend_pointwise(ta.spread_points, tb.spread_points);
       blend_pointwise(ta.rest_points, tb.rest_points);
       blend_pointwise(ta.spread_delays, tb.spread_delays);

@@ -441,22 +441,51 @@ std::vector<double> centred_delays(const std::vector<double>& cycles, double cyc
   return out;
 }
 
+/// Each finished path's probability (summing to 1), or nothing when they are
+/// all equal (the points' weights are then implied: one over their number).
+std::vector<double> path_weights(const std::vector<FinishedPath>& done) {
+  double total = 0.0;
+  bool equal = true;
+  for (const FinishedPath& p : done) {
+    total += p.walker.weight;
+    equal = equal && p.walker.weight == done.front().walker.weight;
+  }
+  if (equal || !(total > 0.0)) return {};
+  std::vector<double> out;
+  for (const FinishedPath& p : done) out.push_back(p.walker.weight / total);
+  return out;
+}
+
+/// The covariance of points about the origin: equal weights, or `weights`.
+Eigen::Matrix2d points_cov(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& weights) {
+  Eigen::Matrix2d c = Eigen::Matrix2d::Zero();
+  for (std::size_t j = 0; j < points.size(); ++j) {
+    const double w = weights.empty() ? 1.0 / static_cast<double>(points.size()) : weights[j];
+    c += w * points[j] * points[j].transpose();
+  }
+  return c;
+}
+
 /// Where finished paths come to rest, each braking on its own from the speed
 /// and heading it fired at: `centre` is their weighted mean (true positions:
 /// odometric end plus run-out plus the error's deviation from the paths'
-/// mean error), `offsets` equally likely points relative to it (one per path
-/// in direction order when `one_per_direction`, else equal_weight_ends'
-/// slabs), `within` the spread the points average away.
+/// mean error), `offsets` points relative to it (one per path, in direction
+/// order, when `one_per_path`, else equal_weight_ends' equally likely slabs),
+/// `within` the spread the points average away.
 struct RestPoints {
   std::vector<Eigen::Vector2d> offsets;
+  /// Each offset's probability when one per path and the paths' weights
+  /// differ (path_weights); empty when the points are equally likely.
+  std::vector<double> weights;
   /// Each offset's path's duration in cycles (uncentred), when one per
-  /// direction; empty for slabs (their delays are not kept: see end_delays).
+  /// path and equally likely; empty for slabs and weighted points (their
+  /// delays are not kept: see end_delays).
   std::vector<double> delays;
   Eigen::Matrix2d within = Eigen::Matrix2d::Zero();
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
 };
 
-RestPoints rest_points(const std::vector<FinishedPath>& done, bool one_per_direction, const Eigen::Vector2d& goal,
+RestPoints rest_points(const std::vector<FinishedPath>& done, bool one_per_path, const Eigen::Vector2d& goal,
                        std::size_t directions, const Kinematics& k) {
   RestPoints out;
   double total = 0.0;
@@ -473,9 +502,12 @@ RestPoints rest_points(const std::vector<FinishedPath>& done, bool one_per_direc
     at.push_back(Eigen::Vector2d(p.walker.q.x_m, p.walker.q.y_m) + p.walker.error.mean.head<2>() - error_mean + moved.back());
     out.centre += (p.walker.weight / total) * at.back();
   }
-  if (one_per_direction) {
+  if (one_per_path) {
     for (const Eigen::Vector2d& x : at) out.offsets.push_back(x - out.centre);
-    for (const FinishedPath& p : done) out.delays.push_back(static_cast<double>(p.walker.cycles));
+    out.weights = path_weights(done);
+    if (out.weights.empty()) {
+      for (const FinishedPath& p : done) out.delays.push_back(static_cast<double>(p.walker.cycles));
+    }
   } else {
     out.offsets = equal_weight_ends(done, goal, out.centre, error_mean, directions, moved);
   }
@@ -483,7 +515,7 @@ RestPoints rest_points(const std::vector<FinishedPath>& done, bool one_per_direc
   for (std::size_t j = 0; j < done.size(); ++j) {
     all += (done[j].walker.weight / total) * (at[j] - out.centre) * (at[j] - out.centre).transpose();
   }
-  for (const Eigen::Vector2d& d : out.offsets) shown += d * d.transpose() / static_cast<double>(out.offsets.size());
+  shown = points_cov(out.offsets, out.weights);
   out.within = floored_psd(all - shown);
   // Where within its last cycle each path fires (the check comes 0..1 cycle
   // after the crossing): a spread along that cycle's step, 4 cm long at
@@ -804,14 +836,25 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
     // deviation from the mean error: the two are correlated, so they are
     // added per path, not combined as independent spreads).
     const Eigen::Vector2d error_mean = a.error.mean.head<2>();
+    // A point per path when there are few: a NOISE held for the whole leg
+    // from one start point (a path per direction), or no NOISE from several
+    // (a path per start point). Those ends lie on an arc around the goal, at
+    // about the AtGoal radius from their own bearings; one slab for a leg
+    // without NOISE made that arc one Gaussian blob, whose distance from the
+    // goal spread where the runs' does not (gen_7370's robot1: 0.043 m
+    // against the runs' 0.012 m, the radius curve 0.35 off).
+    const bool one_per_path = ends->redraws == 0 && (entries.size() == 1 || directions == 1);
     std::vector<double> end_cycles;
-    if (ends->redraws == 0 && entries.size() == 1) {
-      // One end point per direction, in direction order (equal weights).
+    if (one_per_path) {
+      // One end point per direction, in direction order (equal weights), or
+      // per start point without NOISE (weighted as the start points were).
       for (const FinishedPath& p : ends->finished) {
         a.end_offsets.push_back(Eigen::Vector2d(p.walker.q.x_m, p.walker.q.y_m) + p.walker.error.mean.head<2>() - error_mean -
                                 mean_xy);
         end_cycles.push_back(static_cast<double>(p.walker.cycles));
       }
+      a.end_weights = path_weights(ends->finished);
+      if (!a.end_weights.empty()) end_cycles.clear();
     } else {
       a.end_offsets = equal_weight_ends(ends->finished, Eigen::Vector2d(go->goal.x_m, go->goal.y_m), mean_xy, error_mean,
                                         directions);
@@ -828,7 +871,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
           Eigen::Vector2d(p.walker.q.x_m, p.walker.q.y_m) + p.walker.error.mean.head<2>() - error_mean - mean_xy;
       all += (p.walker.weight / finished) * d * d.transpose();
     }
-    for (const Eigen::Vector2d& d : a.end_offsets) shown += d * d.transpose() / static_cast<double>(a.end_offsets.size());
+    shown = points_cov(a.end_offsets, a.end_weights);
     a.end_offsets_within = floored_psd(all - shown);
 
     // Where each path comes to rest when its exit stops the robot (a still
@@ -844,7 +887,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
     if (stops_after) {
       const Eigen::Vector2d goal(go->goal.x_m, go->goal.y_m);
       const Kinematics& kin = ctx.model->kinematics;
-      const RestPoints at_ends = rest_points(ends->finished, ends->redraws == 0 && entries.size() == 1, goal, directions, kin);
+      const RestPoints at_ends = rest_points(ends->finished, one_per_path, goal, directions, kin);
       // Where the paths come to rest is centred where `ends` says (the held
       // paths when one draw spans the approach: where the circle is crossed);
       // but the speed and heading at the crossing are a redrawn NOISE's, not
@@ -859,6 +902,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
       const RestPoints shape = redrawn_shape ? rest_points(quad.finished, false, goal, directions, kin) : at_ends;
       const Eigen::Vector2d centre = at_ends.centre - (mean_xy + run_out(a.end, kin));
       for (const Eigen::Vector2d& d : shape.offsets) a.rest_offsets.push_back(d + centre);
+      a.rest_weights = shape.weights;
       a.rest_offsets_within = shape.within;
       a.rest_delays = centred_delays(shape.delays, kin.cycle_s);
     }

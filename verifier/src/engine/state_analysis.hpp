@@ -70,12 +70,16 @@ struct StateAnalysis {
   Eigen::Matrix2d end_spread = Eigen::Matrix2d::Zero();  ///< odometric end-position spread (GoToGuarded)
   bool sets_spread = false;           ///< true when end_spread replaces the robot's previous spread
   /// Each finished NOISE path's true end (its odometric end plus its error's
-  /// deviation from the mean error) minus their mean (equal weights;
+  /// deviation from the mean error) minus their mean (equally likely unless end_weights says otherwise;
   /// end_spread is the odometric ends' covariance). The end points lie near the AtGoal circle,
   /// so the distance to the goal hardly varies over them: kept as points, the
   /// final position is a mixture that keeps that, where one Gaussian would
   /// smear the arc into a spread of the distance that is not there.
   std::vector<Eigen::Vector2d> end_offsets;
+  /// Each end_offsets point's probability when they differ (one point per
+  /// path of a leg without NOISE entered from unequal start points); empty
+  /// when the points are equally likely.
+  std::vector<double> end_weights;
   /// The true ends' spread that end_offsets do not show (a redrawn NOISE's
   /// many paths are averaged into `directions` slabs).
   Eigen::Matrix2d end_offsets_within = Eigen::Matrix2d::Zero();
@@ -90,6 +94,7 @@ struct StateAnalysis {
   /// exit leads to a state that stops the robot (the sequencer uses them on
   /// entering one), empty otherwise.
   std::vector<Eigen::Vector2d> rest_offsets;
+  std::vector<double> rest_weights;   ///< end_weights for rest_offsets
   Eigen::Matrix2d rest_offsets_within = Eigen::Matrix2d::Zero();
   std::vector<double> rest_delays;    ///< end_delays for rest_offsets
   ErrorState error;                   ///< the true pose's error at the end
