@@ -1338,8 +1338,8 @@ class Sequencer {
             g.mean = t.true_mean() + ends[e] + c.delta.head<2>();
             g.cov = common + c.cov.topLeftCorner<2, 2>();
             r.final_components.push_back(g);
-            r.final_weights.push_back(c.weight * (t.spread_weights.empty() ? 1.0 / static_cast<double>(ends.size())
-                                                                           : t.spread_weights[e]));
+            r.final_weights.push_back(t.spread_weights.empty() ? c.weight / static_cast<double>(ends.size())
+                                                               : c.weight * t.spread_weights[e]);
             if (!scores.empty()) r.final_time_scores.push_back(scores[e]);
           }
         }
@@ -1532,28 +1532,25 @@ class Sequencer {
         }
         for (std::size_t j = 0; j < pa.size(); ++j) pa[j] = (wa * pa[j] + wb * pb[j]) / w;
       };
-      // Points' own weights blend alike (an empty list: equally likely).
-      const auto blend_weights = [&](std::vector<double>& qa, const std::vector<double>& qb, std::size_t n) {
-        if (qa.empty() && qb.empty()) return;
-        const auto at = [n](const std::vector<double>& q, std::size_t j) {
-          return q.size() == n ? q[j] : 1.0 / static_cast<double>(n);
-        };
-        std::vector<double> out(n);
-        for (std::size_t j = 0; j < n; ++j) out[j] = (wa * at(qa, j) + wb * at(qb, j)) / w;
-        qa = std::move(out);
+      // Points with their own weights (an empty list: equally likely) blend
+      // the weights alike; points that do not match drop them with the points.
+      const auto blend_weighted = [&](std::vector<Eigen::Vector2d>& pa, std::vector<double>& qa,
+                                      const std::vector<Eigen::Vector2d>& pb, const std::vector<double>& qb) {
+        const std::size_t n = pa.size();
+        if (pb.size() != n) {
+          qa.clear();
+        } else if (!qa.empty() || !qb.empty()) {
+          const auto at = [n](const std::vector<double>& q, std::size_t j) {
+            return q.size() == n ? q[j] : 1.0 / static_cast<double>(n);
+          };
+          std::vector<double> out(n);
+          for (std::size_t j = 0; j < n; ++j) out[j] = (wa * at(qa, j) + wb * at(qb, j)) / w;
+          qa = std::move(out);
+        }
+        blend_pointwise(pa, pb);
       };
-      if (ta.spread_points.size() == tb.spread_points.size()) {
-        blend_weights(ta.spread_weights, tb.spread_weights, ta.spread_points.size());
-      } else {
-        ta.spread_weights.clear();
-      }
-      if (ta.rest_points.size() == tb.rest_points.size()) {
-        blend_weights(ta.rest_weights, tb.rest_weights, ta.rest_points.size());
-      } else {
-        ta.rest_weights.clear();
-      }
-      blend_pointwise(ta.spread_points, tb.spread_points);
-      blend_pointwise(ta.rest_points, tb.rest_points);
+      blend_weighted(ta.spread_points, ta.spread_weights, tb.spread_points, tb.spread_weights);
+      blend_weighted(ta.rest_points, ta.rest_weights, tb.rest_points, tb.rest_weights);
       blend_pointwise(ta.spread_delays, tb.spread_delays);
       blend_pointwise(ta.rest_delays, tb.rest_delays);
       ta.rest_points_within = (wa * ta.rest_points_within + wb * tb.rest_points_within) / w;

@@ -460,8 +460,11 @@ std::vector<double> path_weights(const std::vector<FinishedPath>& done) {
 Eigen::Matrix2d points_cov(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& weights) {
   Eigen::Matrix2d c = Eigen::Matrix2d::Zero();
   for (std::size_t j = 0; j < points.size(); ++j) {
-    const double w = weights.empty() ? 1.0 / static_cast<double>(points.size()) : weights[j];
-    c += w * points[j] * points[j].transpose();
+    if (weights.empty()) {
+      c += points[j] * points[j].transpose() / static_cast<double>(points.size());
+    } else {
+      c += weights[j] * points[j] * points[j].transpose();
+    }
   }
   return c;
 }
