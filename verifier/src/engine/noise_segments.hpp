@@ -80,7 +80,9 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
 /// passes, each cluster moment-matched (pose, velocities, turn, error), then
 /// the clusters' deviations mapped linearly so that the covariance of their
 /// pose and velocities is exactly the children's (merging would otherwise
-/// shrink the spread at every redraw). Deterministic; the total
+/// shrink the spread at every redraw), each heading read as the way it faces
+/// (its cluster brought within half a turn of the walkers' circular mean
+/// heading, every member with it). Deterministic; the total
 /// weight and the weighted mean pose are kept.
 std::vector<Walker> reduce_walkers(const std::vector<Walker>& walkers, std::size_t keep);
 
