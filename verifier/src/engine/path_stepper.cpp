@@ -5,6 +5,7 @@
 #include <span>
 #include <variant>
 
+#include "engine/body_contact.hpp"
 #include "engine/moving_bodies.hpp"
 #include "engine/sonar_model.hpp"
 #include "p3at/executive/frames.hpp"
@@ -115,6 +116,9 @@ bool PathStepper::delicate(const Walker& w) const {
 void PathStepper::step(Walker& w, const exec::Vec2<double>& noise_direction) const {
   const Kinematics& k = ctx_.model->kinematics;
   double trans = 0.0, rot = 0.0;
+  // Whether a wall or a still body is within AVOID_OBSTACLES' reach: beyond
+  // it, neither the sonar's readings nor the body's contact can matter.
+  bool obstacles_near = false;
   if (go_) {
     // The sonar sees the world from the true pose; the executive places what
     // it sees around its odometric pose.
@@ -128,7 +132,8 @@ void PathStepper::step(Walker& w, const exec::Vec2<double>& noise_direction) con
     // cycle (engine/moving_bodies.hpp); for the same reason only the bodies
     // within reach are added to the segments the rays are cast against.
     const bool mates_near = ctx_.movers && ctx_.movers->within(w.cycles, tx, ty, avoid_reach_m_);
-    if (mates_near || any_within(ctx_.obstacles, tx, ty, avoid_reach_m_)) {
+    obstacles_near = any_within(ctx_.obstacles, tx, ty, avoid_reach_m_);
+    if (mates_near || obstacles_near) {
       std::vector<Segment> with_mates;
       if (mates_near) {
         with_mates = ctx_.obstacles;
@@ -145,7 +150,17 @@ void PathStepper::step(Walker& w, const exec::Vec2<double>& noise_direction) con
   }
   w.before = w.q;
   w.turned_before_rad = w.turned_rad;
-  const CycleIncrement inc = step_cycle(w.q, trans, rot, k);
+  // The body stalls against a wall where every run would (body_contact.hpp;
+  // StateContext::walls); only checked where a wall is that close. The
+  // avoidance's reach is usually beyond contact's (a robot radius of 0.4 m
+  // and more against a half-diagonal of 0.40 m plus a cycle's travel), so
+  // its check above mostly answers for both.
+  const double reach = contact_reach_m(std::max(config_.max_speed_mps, std::abs(w.q.trans_mps)), k.max_rot_vel_radps,
+                                       k.cycle_s);
+  const bool contact = (obstacles_near || reach > avoid_reach_m_) &&
+                       any_within(ctx_.walls, w.q.x_m + w.error.mean(0), w.q.y_m + w.error.mean(1), reach);
+  const CycleIncrement inc = contact ? step_cycle_against(w.q, trans, rot, k, ctx_.walls, w.error.mean.data())
+                                     : step_cycle(w.q, trans, rot, k);
   propagate(w.error, inc, ctx_.model->motion);
   if (go_ && std::abs(inc.ds_m) > 0.0) {
     // The fraction of the step that closes on the goal (a step across the

@@ -481,6 +481,7 @@ class Sequencer {
     ctx.model = robot_models_[i];
     ctx.models = &models_;
     ctx.obstacles = obstacles_near(b, i, state);
+    ctx.walls = near_way(walls_, b, i, state);
     ctx.movers = moving_teammates(b, i, state);
     track.analysis = cached_analysis(ctx, i, state, track);
     track.moved_start.setZero();
@@ -595,13 +596,21 @@ class Sequencer {
     return a;
   }
 
-  std::vector<Segment> obstacles_near(const BranchState& b, std::size_t i, std::size_t state) const {
+  /// Of `all`, the segments within sonar range of robot i's way in `state`
+  /// (from where it is to its goal).
+  std::vector<Segment> near_way(const std::vector<Segment>& all, const BranchState& b, std::size_t i,
+                                std::size_t state) const {
     const Track& me = b.robots[i];
     double gx = me.base.x_m, gy = me.base.y_m;
     if (const auto* go = std::get_if<mission::GoToGuardedParams>(&mission_.robots[i].states[state].behavior)) {
       gx = go->goal.x_m;
       gy = go->goal.y_m;
     }
+    const Eigen::Vector2d from = me.true_mean();
+    return segments_near(all, from.x(), from.y(), gx, gy, models_.environment.sonar_max_range_m + 1.0);
+  }
+
+  std::vector<Segment> obstacles_near(const BranchState& b, std::size_t i, std::size_t state) const {
     std::vector<Segment> all = walls_;
     for (std::size_t j = 0; j < b.robots.size(); ++j) {
       if (j == i) continue;
@@ -622,8 +631,7 @@ class Sequencer {
       const auto body = body_segments(p.x(), p.y(), b.robots[j].base.theta_rad + b.robots[j].error.mean(2));
       all.insert(all.end(), body.begin(), body.end());
     }
-    const Eigen::Vector2d from = me.true_mean();
-    return segments_near(all, from.x(), from.y(), gx, gy, models_.environment.sonar_max_range_m + 1.0);
+    return near_way(all, b, i, state);
   }
 
   /// The teammates driving a GoToGuarded leg when robot i enters `state`
@@ -902,6 +910,7 @@ class Sequencer {
     ctx.models = &models_;
     ctx.obstacles = segments_near(walls_, start.x_m + error.mean(0), start.y_m + error.mean(1), go.goal.x_m, go.goal.y_m,
                                   models_.environment.sonar_max_range_m + 1.0);
+    ctx.walls = ctx.obstacles;
     auto a = std::make_shared<const StateAnalysis>(analyze_state(ctx, state, start, error));
     outcome_.work_cycles += a->cycles_simulated;
     look_ahead_cache_.emplace(key, a);

@@ -124,6 +124,12 @@ struct StateContext {
   const RobotModel* model = nullptr;
   const Models* models = nullptr;
   std::vector<Segment> obstacles;     ///< walls plus the bodies of teammates that hold still
+  /// The walls alone among `obstacles`: what the robot's body stalls against
+  /// (body_contact.hpp). Not the teammates' bodies: the model puts a parked
+  /// teammate where it would park alone, blind to this robot in its way, and
+  /// a stall against that body is all or nothing where runs jostle (gen_7486:
+  /// 0.149 of a robot's mass stuck against a parked teammate, no run stuck).
+  std::vector<Segment> walls;
   /// Teammates driving a leg, as bodies that move with the state's cycles
   /// (engine/moving_bodies.hpp); null when none comes near.
   std::shared_ptr<const MovingBodies> movers;

@@ -1,0 +1,132 @@
+#include "engine/body_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace p3at::verifier::engine {
+namespace {
+
+const double kHalfDiagonalM = std::hypot(kBodyHalfLengthM, kBodyHalfWidthM);
+
+// Liang-Barsky: whether the segment a + t (b - a), t in [0, 1], meets the
+// rectangle |x| <= hx, |y| <= hy (the body's own frame).
+bool segment_meets_rectangle(double ax, double ay, double bx, double by, double hx, double hy) {
+  double t0 = 0.0, t1 = 1.0;
+  const double dx = bx - ax, dy = by - ay;
+  // Each side: the direction's component p and the room q on that side (p t <= q).
+  const double p[4] = {-dx, dx, -dy, dy};
+  const double q[4] = {ax + hx, hx - ax, ay + hy, hy - ay};
+  for (int i = 0; i < 4; ++i) {
+    if (p[i] == 0.0) {
+      if (q[i] < 0.0) return false;  // parallel to this side and outside it
+      continue;
+    }
+    const double t = q[i] / p[i];
+    if (p[i] < 0.0) {
+      t0 = std::max(t0, t);
+    } else {
+      t1 = std::min(t1, t);
+    }
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+// How deep a segment that meets the rectangle reaches into it: the largest
+// distance from a point of the segment to the rectangle's outline, inside.
+// Inside, that distance is min(hx - |x|, hy - |y|), the least of four linear
+// functions of t along the segment (concave), so its largest value on [0, 1]
+// is at an end or where two of the four cross.
+double segment_depth(double ax, double ay, double bx, double by, double hx, double hy) {
+  const double dx = bx - ax, dy = by - ay;
+  // f_i(t) = c_i + s_i t: hx - x, hx + x, hy - y, hy + y.
+  const double c[4] = {hx - ax, hx + ax, hy - ay, hy + ay};
+  const double s[4] = {-dx, dx, -dy, dy};
+  const auto inner = [&](double t) {
+    double m = c[0] + s[0] * t;
+    for (int i = 1; i < 4; ++i) m = std::min(m, c[i] + s[i] * t);
+    return m;
+  };
+  double best = std::max(inner(0.0), inner(1.0));
+  for (int i = 0; i < 4; ++i) {
+    for (int j = i + 1; j < 4; ++j) {
+      if (s[i] == s[j]) continue;
+      const double t = (c[j] - c[i]) / (s[i] - s[j]);
+      if (t > 0.0 && t < 1.0) best = std::max(best, inner(t));
+    }
+  }
+  return std::max(best, 0.0);
+}
+
+// The distance from the origin (the body's centre, in its own frame) to the segment.
+double centre_distance(double ax, double ay, double bx, double by) {
+  const double dx = bx - ax, dy = by - ay;
+  const double len2 = dx * dx + dy * dy;
+  const double t = len2 > 0.0 ? std::clamp(-(ax * dx + ay * dy) / len2, 0.0, 1.0) : 0.0;
+  return std::hypot(ax + t * dx, ay + t * dy);
+}
+
+/// How the body at a pose meets the segments: the deepest any reaches into
+/// it (negative when none meets it), and the least distance from its centre
+/// to one that does.
+struct Overlap {
+  double depth = -1.0;
+  double centre_m = std::numeric_limits<double>::infinity();
+};
+
+Overlap body_overlap(const std::vector<Segment>& segments, double x_m, double y_m, double theta_rad) {
+  const double c = std::cos(theta_rad), s = std::sin(theta_rad);
+  Overlap o;
+  for (const Segment& g : segments) {
+    // Broad phase: the segment's bounding box beyond the body's circle.
+    if (std::min(g.x0, g.x1) > x_m + kHalfDiagonalM || std::max(g.x0, g.x1) < x_m - kHalfDiagonalM ||
+        std::min(g.y0, g.y1) > y_m + kHalfDiagonalM || std::max(g.y0, g.y1) < y_m - kHalfDiagonalM) {
+      continue;
+    }
+    const double ax = c * (g.x0 - x_m) + s * (g.y0 - y_m), ay = -s * (g.x0 - x_m) + c * (g.y0 - y_m);
+    const double bx = c * (g.x1 - x_m) + s * (g.y1 - y_m), by = -s * (g.x1 - x_m) + c * (g.y1 - y_m);
+    if (segment_meets_rectangle(ax, ay, bx, by, kBodyHalfLengthM, kBodyHalfWidthM)) {
+      o.depth = std::max(o.depth, segment_depth(ax, ay, bx, by, kBodyHalfLengthM, kBodyHalfWidthM));
+      o.centre_m = std::min(o.centre_m, centre_distance(ax, ay, bx, by));
+    }
+  }
+  return o;
+}
+
+}  // namespace
+
+bool body_touches(const std::vector<Segment>& segments, double x_m, double y_m, double theta_rad) {
+  return body_overlap(segments, x_m, y_m, theta_rad).depth >= 0.0;
+}
+
+double contact_reach_m(double top_speed_mps, double top_rot_radps, double cycle_s) {
+  const double corner_travel = (std::abs(top_speed_mps) + std::abs(top_rot_radps) * kHalfDiagonalM) * cycle_s;
+  return kHalfDiagonalM + corner_travel + 0.01;
+}
+
+CycleIncrement step_cycle_against(BaseState& base, double command_trans_mps, double command_rot_radps,
+                                  const Kinematics& kinematics, const std::vector<Segment>& segments,
+                                  const double error_mean[3], bool* stalled) {
+  if (stalled) *stalled = false;
+  const auto overlap = [&](const BaseState& q) {
+    return body_overlap(segments, q.x_m + error_mean[0], q.y_m + error_mean[1], q.theta_rad + error_mean[2]);
+  };
+  Overlap now = overlap(base);
+  return step_cycle_held(base, command_trans_mps, command_rot_radps, kinematics, [&](const BaseState& next) {
+    const Overlap then = overlap(next);
+    // Clear, the substep is the simulator's: held on any contact. Already
+    // inside (see the header), held only when it drives the centre in and
+    // the body deeper: turning on the spot and backing out stay free.
+    const bool held = now.depth < 0.0 ? then.depth >= 0.0
+                                      : then.depth > now.depth + 1e-12 && then.centre_m < now.centre_m - 1e-12;
+    if (held) {
+      if (stalled) *stalled = true;
+    } else {
+      now = then;
+    }
+    return held;
+  });
+}
+
+}  // namespace p3at::verifier::engine
