@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "p3at/common/segment_box.hpp"
+
 namespace p3at::sim {
 
 double wrap_angle_any(double angle_rad) {
@@ -44,27 +46,10 @@ std::optional<double> ray_cast_dir(Vec2 origin, Vec2 unit_direction, std::span<c
 
 namespace {
 
-// Liang-Barsky clipping of the segment p0->p1 against the box |x| <= hx, |y| <= hy.
+// Whether the segment p0->p1 meets the box |x| <= hx, |y| <= hy (the
+// verifier's body_contact holds its paths at walls by the same test).
 bool segment_touches_box(Vec2 p0, Vec2 p1, double hx, double hy) {
-  double t0 = 0.0;
-  double t1 = 1.0;
-  const double d[2] = {p1.x - p0.x, p1.y - p0.y};
-  const double p[4] = {-d[0], d[0], -d[1], d[1]};
-  const double q[4] = {p0.x + hx, hx - p0.x, p0.y + hy, hy - p0.y};
-  for (int i = 0; i < 4; ++i) {
-    if (p[i] == 0.0) {
-      if (q[i] < 0.0) return false;
-      continue;
-    }
-    const double r = q[i] / p[i];
-    if (p[i] < 0.0) {
-      t0 = std::max(t0, r);
-    } else {
-      t1 = std::min(t1, r);
-    }
-    if (t0 > t1) return false;
-  }
-  return true;
+  return segment_meets_centred_box(p0.x, p0.y, p1.x, p1.y, hx, hy);
 }
 
 }  // namespace

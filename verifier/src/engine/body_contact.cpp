@@ -4,34 +4,12 @@
 #include <cmath>
 #include <limits>
 
+#include "p3at/common/segment_box.hpp"
+
 namespace p3at::verifier::engine {
 namespace {
 
 const double kHalfDiagonalM = std::hypot(kBodyHalfLengthM, kBodyHalfWidthM);
-
-// Liang-Barsky: whether the segment a + t (b - a), t in [0, 1], meets the
-// rectangle |x| <= hx, |y| <= hy (the body's own frame).
-bool segment_meets_rectangle(double ax, double ay, double bx, double by, double hx, double hy) {
-  double t0 = 0.0, t1 = 1.0;
-  const double dx = bx - ax, dy = by - ay;
-  // Each side: the direction's component p and the room q on that side (p t <= q).
-  const double p[4] = {-dx, dx, -dy, dy};
-  const double q[4] = {ax + hx, hx - ax, ay + hy, hy - ay};
-  for (int i = 0; i < 4; ++i) {
-    if (p[i] == 0.0) {
-      if (q[i] < 0.0) return false;  // parallel to this side and outside it
-      continue;
-    }
-    const double t = q[i] / p[i];
-    if (p[i] < 0.0) {
-      t0 = std::max(t0, t);
-    } else {
-      t1 = std::min(t1, t);
-    }
-    if (t0 > t1) return false;
-  }
-  return true;
-}
 
 // How deep a segment that meets the rectangle reaches into it: the largest
 // distance from a point of the segment to the rectangle's outline, inside.
@@ -86,7 +64,7 @@ Overlap body_overlap(const std::vector<Segment>& segments, double x_m, double y_
     }
     const double ax = c * (g.x0 - x_m) + s * (g.y0 - y_m), ay = -s * (g.x0 - x_m) + c * (g.y0 - y_m);
     const double bx = c * (g.x1 - x_m) + s * (g.y1 - y_m), by = -s * (g.x1 - x_m) + c * (g.y1 - y_m);
-    if (segment_meets_rectangle(ax, ay, bx, by, kBodyHalfLengthM, kBodyHalfWidthM)) {
+    if (segment_meets_centred_box(ax, ay, bx, by, kBodyHalfLengthM, kBodyHalfWidthM)) {
       o.depth = std::max(o.depth, segment_depth(ax, ay, bx, by, kBodyHalfLengthM, kBodyHalfWidthM));
       o.centre_m = std::min(o.centre_m, centre_distance(ax, ay, bx, by));
     }
