@@ -9,8 +9,6 @@
 namespace p3at::verifier::engine {
 namespace {
 
-const double kHalfDiagonalM = std::hypot(kBodyHalfLengthM, kBodyHalfWidthM);
-
 // How deep a segment that meets the rectangle reaches into it: the largest
 // distance from a point of the segment to the rectangle's outline, inside.
 // Inside, that distance is min(hx - |x|, hy - |y|), the least of four linear
@@ -37,14 +35,6 @@ double segment_depth(double ax, double ay, double bx, double by, double hx, doub
   return std::max(best, 0.0);
 }
 
-// The distance from the origin (the body's centre, in its own frame) to the segment.
-double centre_distance(double ax, double ay, double bx, double by) {
-  const double dx = bx - ax, dy = by - ay;
-  const double len2 = dx * dx + dy * dy;
-  const double t = len2 > 0.0 ? std::clamp(-(ax * dx + ay * dy) / len2, 0.0, 1.0) : 0.0;
-  return std::hypot(ax + t * dx, ay + t * dy);
-}
-
 /// How the body at a pose meets the segments: the deepest any reaches into
 /// it (negative when none meets it), and the least distance from its centre
 /// to one that does.
@@ -58,15 +48,13 @@ Overlap body_overlap(const std::vector<Segment>& segments, double x_m, double y_
   Overlap o;
   for (const Segment& g : segments) {
     // Broad phase: the segment's bounding box beyond the body's circle.
-    if (std::min(g.x0, g.x1) > x_m + kHalfDiagonalM || std::max(g.x0, g.x1) < x_m - kHalfDiagonalM ||
-        std::min(g.y0, g.y1) > y_m + kHalfDiagonalM || std::max(g.y0, g.y1) < y_m - kHalfDiagonalM) {
-      continue;
-    }
+    const auto [box_dx, box_dy] = offset_to_box(x_m, y_m, g);
+    if (surely_longer(box_dx, box_dy, kBodyHalfDiagonalM)) continue;
     const double ax = c * (g.x0 - x_m) + s * (g.y0 - y_m), ay = -s * (g.x0 - x_m) + c * (g.y0 - y_m);
     const double bx = c * (g.x1 - x_m) + s * (g.y1 - y_m), by = -s * (g.x1 - x_m) + c * (g.y1 - y_m);
     if (segment_meets_centred_box(ax, ay, bx, by, kBodyHalfLengthM, kBodyHalfWidthM)) {
       o.depth = std::max(o.depth, segment_depth(ax, ay, bx, by, kBodyHalfLengthM, kBodyHalfWidthM));
-      o.centre_m = std::min(o.centre_m, centre_distance(ax, ay, bx, by));
+      o.centre_m = std::min(o.centre_m, point_segment_distance(x_m, y_m, g));
     }
   }
   return o;
@@ -79,8 +67,8 @@ bool body_touches(const std::vector<Segment>& segments, double x_m, double y_m, 
 }
 
 double contact_reach_m(double top_speed_mps, double top_rot_radps, double cycle_s) {
-  const double corner_travel = (std::abs(top_speed_mps) + std::abs(top_rot_radps) * kHalfDiagonalM) * cycle_s;
-  return kHalfDiagonalM + corner_travel + 0.01;
+  const double corner_travel = (std::abs(top_speed_mps) + std::abs(top_rot_radps) * kBodyHalfDiagonalM) * cycle_s;
+  return kBodyHalfDiagonalM + corner_travel + 0.01;
 }
 
 CycleIncrement step_cycle_against(BaseState& base, double command_trans_mps, double command_rot_radps,

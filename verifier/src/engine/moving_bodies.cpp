@@ -8,8 +8,6 @@
 namespace p3at::verifier::engine {
 namespace {
 
-// A body's outline is within this of its centre (half the footprint's diagonal).
-const double kHalfDiagonalM = std::hypot(kBodyHalfLengthM, kBodyHalfWidthM);
 // Whether a teammate is an obstacle while it drives its predicted mean path,
 // or only where it stands still (at a leg's end, for as long as it holds
 // still there). Both were measured on the dev sweep (seeds 1001-1070, 2,000
@@ -27,18 +25,11 @@ const BodyPose kAbsent{std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0};
 // further (a state's own cycle cap is of that order; beyond it the body rests).
 constexpr std::size_t kMaxFollowedCycles = 100000;
 
-double point_segment_distance(double px, double py, double ax, double ay, double bx, double by) {
-  const double dx = bx - ax, dy = by - ay;
-  const double len2 = dx * dx + dy * dy;
-  const double t = len2 > 0.0 ? std::clamp(((px - ax) * dx + (py - ay) * dy) / len2, 0.0, 1.0) : 0.0;
-  return std::hypot(px - (ax + t * dx), py - (ay + t * dy));
-}
-
 // Whether a body centred at p is surely beyond reach_m of (x, y): its centre
 // farther than reach_m plus the body's half-diagonal (surely_longer: never
 // passes over a body the exact distance_to_body test would find within reach).
 bool surely_beyond(const BodyPose& p, double x_m, double y_m, double reach_m) {
-  return surely_longer(x_m - p.x_m, y_m - p.y_m, reach_m + kHalfDiagonalM);
+  return surely_longer(x_m - p.x_m, y_m - p.y_m, reach_m + kBodyHalfDiagonalM);
 }
 
 }  // namespace
@@ -152,12 +143,13 @@ MovingBody follow_legs(const std::vector<TeammateLeg>& legs, double cycle_s) {
 }
 
 bool passes_near(const MovingBody& body, double ax, double ay, double bx, double by, double reach_m) {
-  const double limit = reach_m + kHalfDiagonalM;
+  const double limit = reach_m + kBodyHalfDiagonalM;
+  const Segment way{ax, ay, bx, by};
   for (const BodyPose& p : body.poses) {
-    if (!std::isnan(p.x_m) && point_segment_distance(p.x_m, p.y_m, ax, ay, bx, by) <= limit) return true;
+    if (!std::isnan(p.x_m) && point_segment_distance(p.x_m, p.y_m, way) <= limit) return true;
   }
   return body.rest_until > body.poses.size() &&
-         point_segment_distance(body.rest.x_m, body.rest.y_m, ax, ay, bx, by) <= limit;
+         point_segment_distance(body.rest.x_m, body.rest.y_m, way) <= limit;
 }
 
 bool MovingBodies::within(std::size_t cycle, double x_m, double y_m, double reach_m) const {

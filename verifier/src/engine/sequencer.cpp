@@ -480,8 +480,8 @@ class Sequencer {
     ctx.robot = &spec;
     ctx.model = robot_models_[i];
     ctx.models = &models_;
-    ctx.obstacles = obstacles_near(b, i, state);
     ctx.walls = near_way(walls_, b, i, state);
+    ctx.obstacles = obstacles_near(b, i, state, ctx.walls);
     ctx.movers = moving_teammates(b, i, state);
     track.analysis = cached_analysis(ctx, i, state, track);
     track.moved_start.setZero();
@@ -610,8 +610,11 @@ class Sequencer {
     return segments_near(all, from.x(), from.y(), gx, gy, models_.environment.sonar_max_range_m + 1.0);
   }
 
-  std::vector<Segment> obstacles_near(const BranchState& b, std::size_t i, std::size_t state) const {
-    std::vector<Segment> all = walls_;
+  /// The walls near robot i's way (`walls_near`, near_way of walls_) and
+  /// after them the bodies of the teammates that hold still there.
+  std::vector<Segment> obstacles_near(const BranchState& b, std::size_t i, std::size_t state,
+                                      const std::vector<Segment>& walls_near) const {
+    std::vector<Segment> bodies;
     for (std::size_t j = 0; j < b.robots.size(); ++j) {
       if (j == i) continue;
       // A teammate driving a GoToGuarded leg is not where its leg began for
@@ -629,9 +632,13 @@ class Sequencer {
       if (drives_off_in(b, j)) continue;
       const Eigen::Vector2d p = b.robots[j].true_mean();
       const auto body = body_segments(p.x(), p.y(), b.robots[j].base.theta_rad + b.robots[j].error.mean(2));
-      all.insert(all.end(), body.begin(), body.end());
+      bodies.insert(bodies.end(), body.begin(), body.end());
     }
-    return near_way(all, b, i, state);
+    // near_way filters segment by segment, in order: the walls' part is walls_near.
+    std::vector<Segment> all = walls_near;
+    const std::vector<Segment> bodies_near = near_way(bodies, b, i, state);
+    all.insert(all.end(), bodies_near.begin(), bodies_near.end());
+    return all;
   }
 
   /// The teammates driving a GoToGuarded leg when robot i enters `state`

@@ -19,11 +19,6 @@ std::array<double, 2> offset_to_segment(double px, double py, const Segment& s) 
   return {px - (s.x0 + t * dx), py - (s.y0 + t * dy)};
 }
 
-double point_segment_distance(double px, double py, const Segment& s) {
-  const auto [dx, dy] = offset_to_segment(px, py, s);
-  return std::hypot(dx, dy);
-}
-
 // Whether a point at offset (dx, dy) is within reach_m (reach_m > 0, of a
 // size a map has), with exactly the answer of std::hypot(dx, dy) <= reach_m.
 // The squared distance settles every point clearly inside or outside (its
@@ -33,14 +28,6 @@ bool offset_within(double dx, double dy, double reach_m) {
   if (dx * dx + dy * dy < reach_m * reach_m * (1.0 - 1e-9)) return true;
   if (surely_longer(dx, dy, reach_m)) return false;
   return std::hypot(dx, dy) <= reach_m;
-}
-
-// The offset from (px, py) to the segment's bounding box: never longer than
-// to the segment itself, and without a division, so a cheap first test that
-// a segment is out of reach.
-std::array<double, 2> offset_to_box(double px, double py, const Segment& s) {
-  return {std::max({std::min(s.x0, s.x1) - px, px - std::max(s.x0, s.x1), 0.0}),
-          std::max({std::min(s.y0, s.y1) - py, py - std::max(s.y0, s.y1), 0.0})};
 }
 
 // The farthest a sonar of the ring sits from the robot's centre.
@@ -71,6 +58,16 @@ double ray_hit(double ox, double oy, double cx, double cy, const Segment& s, dou
 }
 
 }  // namespace
+
+double point_segment_distance(double px, double py, const Segment& s) {
+  const auto [dx, dy] = offset_to_segment(px, py, s);
+  return std::hypot(dx, dy);
+}
+
+std::array<double, 2> offset_to_box(double px, double py, const Segment& s) {
+  return {std::max({std::min(s.x0, s.x1) - px, px - std::max(s.x0, s.x1), 0.0}),
+          std::max({std::min(s.y0, s.y1) - py, py - std::max(s.y0, s.y1), 0.0})};
+}
 
 std::vector<Segment> segments_near(const std::vector<Segment>& all, double from_x, double from_y, double to_x,
                                    double to_y, double reach_m) {

@@ -6,6 +6,7 @@
 /// verifier's obstacle avoidance is the executive's own.
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "p3at/executive/sonar.hpp"
@@ -20,6 +21,8 @@ struct Segment {
 /// The P3-AT's footprint (626 x 505 mm), as the simulator and the bridge use it.
 inline constexpr double kBodyHalfLengthM = 0.313;
 inline constexpr double kBodyHalfWidthM = 0.2525;
+/// The farthest the footprint's outline is from its centre.
+inline const double kBodyHalfDiagonalM = std::hypot(kBodyHalfLengthM, kBodyHalfWidthM);
 
 /// The segments a robot can see while it moves around `from`..`to` (walls and
 /// bodies within sonar range of that stretch), so each ray tests few segments.
@@ -34,6 +37,15 @@ std::vector<Segment> segments_near(const std::vector<Segment>& all, double from_
 inline bool surely_longer(double dx, double dy, double limit_m) {
   return dx * dx + dy * dy > limit_m * limit_m * (1.0 + 1e-9);
 }
+
+/// The distance from (px, py) to the segment.
+double point_segment_distance(double px, double py, const Segment& s);
+
+/// The offset from (px, py) to the segment's bounding box: never longer than
+/// to the segment itself, and without a division, so a cheap first test that
+/// a segment is out of reach (with surely_longer, the question every
+/// pre-filter here asks).
+std::array<double, 2> offset_to_box(double px, double py, const Segment& s);
 
 /// The distance from (x, y) to the nearest segment (infinity if none).
 double nearest_distance(const std::vector<Segment>& segments, double x_m, double y_m);
