@@ -403,6 +403,7 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
     write_text(folder / "verify.json", vj.dump(2) + "\n");
 
     // 6. The validation on the same grid, and shifted by -1 % and +1 % for the tolerant scores.
+    t0 = std::chrono::steady_clock::now();
     const team_sim::EmpiricalGrid mid = team_sim::empirical_grid(runs, tax.values, rax.values);
     const team_sim::EmpiricalGrid lo =
         team_sim::empirical_grid(runs, scaled(tax.values, 1 - kShiftFraction), scaled(rax.values, 1 - kShiftFraction));
@@ -460,6 +461,7 @@ MissionResult run_mission(const MissionInput& input, const CampaignOptions& o, c
                             wjoint, &decided_read->grid->p_joint);
     // The separation criterion's curve, from the same evaluation and runs.
     if (mission.robots.size() >= 2) r.separation = score_separation(*outcome, runs, o.rmax_points, 2.0 * floors.radius_m);
+    r.score_s = seconds_since(t0);
 
     // 7. How to redo it: the whole mission, or each step in its folder.
     r.reproduce = o.command_prefix + " " +

@@ -170,7 +170,7 @@ Json mission_result_json(const MissionResult& r) {
   j["robot_distances"] = robots;
   j["within_bounds_strict"] = r.error.empty() && r.score.within(Bounds{}, false);
   j["within_bounds_tolerant"] = r.error.empty() && r.score.within(Bounds{}, true);
-  j["seconds"] = {{"calibrate", r.calibrate_s}, {"validate", r.validate_s}, {"verify", r.verify_s}};
+  j["seconds"] = {{"calibrate", r.calibrate_s}, {"validate", r.validate_s}, {"verify", r.verify_s}, {"score", r.score_s}};
   j["folder"] = r.folder;
   j["reproduce"] = r.reproduce;
   return j;
@@ -243,6 +243,8 @@ MissionResult mission_result_from_json(const nlohmann::json& j) {
   r.calibrate_s = number(j.at("seconds").at("calibrate"));
   r.validate_s = number(j.at("seconds").at("validate"));
   r.verify_s = number(j.at("seconds").at("verify"));
+  // Results written before scoring had its own figure have none.
+  if (j.at("seconds").contains("score")) r.score_s = number(j.at("seconds").at("score"));
   r.folder = j.at("folder").get<std::string>();
   r.reproduce = j.at("reproduce").get<std::string>();
   return r;

@@ -55,7 +55,7 @@ class Progress {
       return;
     }
     std::fprintf(stderr, "vipars crosscheck: %zu/%zu %s %s in %.1f s%s\n", index + 1, missions_, r.name.c_str(),
-                 r.error.empty() ? "done" : "could not run", r.calibrate_s + r.verify_s + r.validate_s,
+                 r.error.empty() ? "done" : "could not run", r.calibrate_s + r.verify_s + r.validate_s + r.score_s,
                  r.runs_reused ? " (validation runs reused from its runs.part)" : "");
   }
 

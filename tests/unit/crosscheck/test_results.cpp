@@ -308,4 +308,14 @@ TEST_CASE("each robot's final distance: kept through JSON (older files have none
   CHECK(mission_result_from_json(old).robot_distances.empty());
   CHECK(summary_text(summarize({mission_result_from_json(old)}, Bounds{}), Bounds{}).find("final distance") ==
         std::string::npos);
+  // Each step's seconds, scoring's too; a file written before scoring had its figure reads back 0.
+  MissionResult timed = rs[0];
+  timed.verify_s = 1.5;
+  timed.score_s = 2.25;
+  const MissionResult timed_back = mission_result_from_json(nlohmann::json::parse(mission_result_json(timed).dump()));
+  CHECK(timed_back.verify_s == 1.5);
+  CHECK(timed_back.score_s == 2.25);
+  nlohmann::json untimed = mission_result_json(timed);
+  untimed["seconds"].erase("score");
+  CHECK(mission_result_from_json(untimed).score_s == 0.0);
 }

@@ -446,6 +446,89 @@ TEST_SUITE("evaluation") {
     CHECK_FALSE(refused->holds);
   }
 
+  TEST_CASE("eq. (6): a pass's answer is its own: far samples with wide errors in the same stretch change nothing") {
+    // The pass of the case above (y = 1.5, error 0.5 z), preceded in the same
+    // joined stretch by an approach from 60 m to 25 m away whose error is 2 z.
+    // Those samples cannot come within d for any error on the grid (25 m -
+    // 2 x 7.1), so the answer must be the pass's alone, to the bit: the
+    // quadrature's refinement is set by the pieces that can decide it
+    // (separation.cpp, StretchPath), not by the stretch's widest error.
+    const auto sample = [](double t, double x, double y, double var, bool joined) {
+      v::SeparationSample s;
+      s.robot_i = 0;
+      s.robot_j = 1;
+      s.time_s = t;
+      s.difference.mean = Eigen::Vector2d(x, y);
+      s.difference.cov = var * Eigen::Matrix2d::Identity();
+      s.joined = joined;
+      s.rigid_s = 20.0;
+      return s;
+    };
+    std::vector<v::SeparationSample> pass;
+    for (int k = 0; k <= 10; ++k) pass.push_back(sample(10.0 + k, -20.0 + 4.0 * k, 1.5, 0.25, k > 0));
+    std::vector<v::SeparationSample> approach;
+    for (int k = 0; k < 8; ++k) approach.push_back(sample(5.5 + 0.5 * k, -60.0 + 5.0 * k, 1.5, 4.0, k > 0));
+    for (v::SeparationSample s : pass) {
+      s.joined = true;
+      approach.push_back(s);
+    }
+    v::Branch alone = branch(1.0, robot(150, 25, 0, 0, 1.0), robot(160, 25, 30, 0, 1.0));
+    alone.separations = pass;
+    v::Branch after = alone;
+    after.separations = approach;
+    const double d = 1.01;
+    const double exact = 1.0 - (phi((d - 1.5) / 0.5) - phi((-d - 1.5) / 0.5));
+    const double p_alone = v::probability_always_apart(alone, 0, 1, d);
+    CHECK(p_alone == doctest::Approx(exact).epsilon(2e-3).scale(1.0));
+    CHECK(v::probability_always_apart(after, 0, 1, d) == p_alone);
+    // Staying together: a sample that is within d for every error on the
+    // grid (the pair 0.1 m apart, error 0.01 z) does not decide either.
+    std::vector<v::SeparationSample> near;
+    for (int k = 0; k <= 4; ++k) near.push_back(sample(k, 1.0, 0.0, 0.01, k > 0));
+    v::Branch together = alone;
+    together.separations = near;
+    const double p_together = v::probability_always_within(together, 0, 1, 2.0);
+    std::vector<v::SeparationSample> closer = near;
+    for (int k = 5; k <= 8; ++k) closer.push_back(sample(k, 0.1, 0.0, 0.0001, true));
+    together.separations = closer;
+    CHECK(v::probability_always_within(together, 0, 1, 2.0) == p_together);
+    CHECK(p_together == doctest::Approx(1.0).epsilon(1e-4));
+  }
+
+  TEST_CASE("eq. (6) for the team: branches that share a pair's stretches get the same number, others their own") {
+    // probability_no_pair_within asks each distinct set of a pair's stretches
+    // once per d (a six-robot mission has hundreds of branches that differ in
+    // other robots' choices); the answer must be what each branch gives alone.
+    const auto pass = [](double y, double var) {
+      std::vector<v::SeparationSample> samples;
+      for (int k = 0; k <= 10; ++k) {
+        v::SeparationSample s;
+        s.robot_i = 0;
+        s.robot_j = 1;
+        s.time_s = k;
+        s.difference.mean = Eigen::Vector2d(-20.0 + 4.0 * k, y);
+        s.difference.cov = var * Eigen::Matrix2d::Identity();
+        s.joined = k > 0;
+        s.rigid_s = 20.0;
+        samples.push_back(s);
+      }
+      return samples;
+    };
+    v::SystemOutcome o;
+    o.branches.push_back(branch(0.3, robot(150, 25, 0, 0, 1.0), robot(160, 25, 30, 0, 1.0)));
+    o.branches.push_back(o.branches[0]);
+    o.branches.push_back(o.branches[0]);
+    o.branches[0].separations = pass(1.5, 0.25);
+    o.branches[1].separations = pass(1.2, 0.25);
+    o.branches[2].separations = pass(1.5, 0.25);
+    o.branches[1].weight = 0.4;
+    const double d = 1.0;
+    const double a0 = v::probability_always_apart(o.branches[0], 0, 1, d);
+    const double a1 = v::probability_always_apart(o.branches[1], 0, 1, d);
+    REQUIRE(a1 < a0 - 0.1);  // the closer pass is a different number
+    CHECK(v::probability_no_pair_within(o, d) == doctest::Approx(0.3 * a0 + 0.4 * a1 + 0.3 * a0).epsilon(1e-12));
+  }
+
   TEST_CASE("eq. (6) negated: together at all times is refused once the pair parts beyond the horizon") {
     const v::Criterion c = v::parse_criterion(
         "criterion together\nnetwork Delay<t1> ; (Delay<t2> # At<robot1, p>) |\n        Delay<t3> ; (Delay<t4> # At<robot2, q>)\n"

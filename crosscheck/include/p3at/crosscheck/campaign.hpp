@@ -98,6 +98,10 @@ struct MissionResult {
   std::optional<SeparationScore> separation;
   std::vector<RobotDistance> robot_distances;  ///< per robot, in the mission's order (empty: not scored)
   double calibrate_s = 0.0, verify_s = 0.0, validate_s = 0.0;   ///< CPU-thread wall time of each step
+  /// Scoring (the grids read again, the closest-approach curve): its own
+  /// figure because a many-robot mission's separation curve once cost more
+  /// than the rest of its cross-check together (docs/crosscheck.md).
+  double score_s = 0.0;
   std::string folder;                    ///< where its files are ("" when not written)
   std::string reproduce;                 ///< one command that redoes this mission alone
 };
