@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "p3at/mission/loader.hpp"
 #include "p3at/verifier/criteria.hpp"
@@ -43,6 +44,20 @@ v::Branch branch(double weight, v::RobotOutcome r1, v::RobotOutcome r2) {
   b.weight = weight;
   b.robots = {std::move(r1), std::move(r2)};
   return b;
+}
+
+// A separation sample of the pair (0, 1): their difference at time t, with an
+// isotropic error of variance var, joined to the sample before it or not.
+v::SeparationSample separation_sample(double t, double x, double y, double var, bool joined) {
+  v::SeparationSample s;
+  s.robot_i = 0;
+  s.robot_j = 1;
+  s.time_s = t;
+  s.difference.mean = Eigen::Vector2d(x, y);
+  s.difference.cov = var * Eigen::Matrix2d::Identity();
+  s.joined = joined;
+  s.rigid_s = 20.0;
+  return s;
 }
 
 v::SystemOutcome one_branch(v::RobotOutcome r1, v::RobotOutcome r2) {
@@ -453,17 +468,7 @@ TEST_SUITE("evaluation") {
     // 2 x 7.1), so the answer must be the pass's alone, to the bit: the
     // quadrature's refinement is set by the pieces that can decide it
     // (separation.cpp, StretchPath), not by the stretch's widest error.
-    const auto sample = [](double t, double x, double y, double var, bool joined) {
-      v::SeparationSample s;
-      s.robot_i = 0;
-      s.robot_j = 1;
-      s.time_s = t;
-      s.difference.mean = Eigen::Vector2d(x, y);
-      s.difference.cov = var * Eigen::Matrix2d::Identity();
-      s.joined = joined;
-      s.rigid_s = 20.0;
-      return s;
-    };
+    const auto sample = separation_sample;
     std::vector<v::SeparationSample> pass;
     for (int k = 0; k <= 10; ++k) pass.push_back(sample(10.0 + k, -20.0 + 4.0 * k, 1.5, 0.25, k > 0));
     std::vector<v::SeparationSample> approach;
@@ -501,17 +506,7 @@ TEST_SUITE("evaluation") {
     // other robots' choices); the answer must be what each branch gives alone.
     const auto pass = [](double y, double var) {
       std::vector<v::SeparationSample> samples;
-      for (int k = 0; k <= 10; ++k) {
-        v::SeparationSample s;
-        s.robot_i = 0;
-        s.robot_j = 1;
-        s.time_s = k;
-        s.difference.mean = Eigen::Vector2d(-20.0 + 4.0 * k, y);
-        s.difference.cov = var * Eigen::Matrix2d::Identity();
-        s.joined = k > 0;
-        s.rigid_s = 20.0;
-        samples.push_back(s);
-      }
+      for (int k = 0; k <= 10; ++k) samples.push_back(separation_sample(k, -20.0 + 4.0 * k, y, var, k > 0));
       return samples;
     };
     v::SystemOutcome o;
