@@ -128,13 +128,15 @@ class StretchPath {
  public:
   StretchPath(const std::vector<Point>& stretch, bool close, double d, double grid_radius)
       : stretch_(stretch), close_(close), at_(stretch.size()) {
+    std::vector<double> gain(stretch.size());  // each sample's largest singular value
+    for (std::size_t k = 0; k < stretch.size(); ++k) gain[k] = spectral_norm(stretch[k].root);
     double whole = 0.0;
-    for (const Point& p : stretch) whole = std::max(whole, spectral_norm(p.root));
+    for (const double g : gain) whole = std::max(whole, g);
     const double spread = whole * grid_radius;
     const double margin = 1e-9 * (1.0 + std::abs(d));
     const auto keep = [&](std::size_t k, std::size_t last) {
       kept_.push_back(k);
-      for (std::size_t q = k; q <= last; ++q) lipschitz_ = std::max(lipschitz_, spectral_norm(stretch[q].root));
+      for (std::size_t q = k; q <= last; ++q) lipschitz_ = std::max(lipschitz_, gain[q]);
     };
     if (!close_) {
       for (std::size_t k = 0; k < stretch.size(); ++k) {
@@ -277,6 +279,19 @@ double close_mass(const std::vector<std::vector<Point>>& all, double d_m) {
 
 bool beyond_reach(double d_m) { return !(d_m <= 0.5 * kSeparationHorizonM); }
 
+/// probability_always_apart; with `seen` (a pair's stretches -> P(close
+/// somewhere), for one d), stretches met before are not integrated again.
+double always_apart(const Branch& b, std::size_t i, std::size_t j, double d_m,
+                    std::unordered_map<std::string, double>* seen) {
+  if (beyond_reach(d_m)) return 0.0;
+  if (!(d_m > 0.0)) return 1.0;
+  const std::vector<std::vector<Point>> all = stretches(b, i, j, nullptr);
+  if (seen == nullptr) return std::max(0.0, 1.0 - close_mass(all, d_m));
+  const auto [at, fresh] = seen->try_emplace(stretches_key(all), 0.0);
+  if (fresh) at->second = close_mass(all, d_m);
+  return std::max(0.0, 1.0 - at->second);
+}
+
 }  // namespace
 
 double decided_separation(double d_m, bool apart, double step_m) {
@@ -285,9 +300,7 @@ double decided_separation(double d_m, bool apart, double step_m) {
 }
 
 double probability_always_apart(const Branch& b, std::size_t i, std::size_t j, double d_m) {
-  if (beyond_reach(d_m)) return 0.0;
-  if (!(d_m > 0.0)) return 1.0;
-  return std::max(0.0, 1.0 - close_mass(stretches(b, i, j, nullptr), d_m));
+  return always_apart(b, i, j, d_m, nullptr);
 }
 
 double probability_always_within(const Branch& b, std::size_t i, std::size_t j, double d_m) {
@@ -301,26 +314,13 @@ double probability_always_within(const Branch& b, std::size_t i, std::size_t j, 
 }
 
 double probability_no_pair_within(const SystemOutcome& outcome, double d_m) {
-  const bool vouched = !beyond_reach(d_m);
-  std::unordered_map<std::string, double> seen;  // a pair's stretches -> P(close somewhere)
+  std::unordered_map<std::string, double> seen;  // shared by the branches: one d
   double total = 0.0;
   for (const Branch& b : outcome.branches) {
     const std::size_t n = b.robots.size();
     double close = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i + 1; j < n; ++j) {
-        // As probability_always_apart, the stretches' masses asked once per d.
-        double apart = 0.0;
-        if (vouched && !(d_m > 0.0)) {
-          apart = 1.0;
-        } else if (vouched) {
-          const std::vector<std::vector<Point>> all = stretches(b, i, j, nullptr);
-          const auto [at, fresh] = seen.try_emplace(stretches_key(all), 0.0);
-          if (fresh) at->second = close_mass(all, d_m);
-          apart = std::max(0.0, 1.0 - at->second);
-        }
-        close += 1.0 - apart;
-      }
+      for (std::size_t j = i + 1; j < n; ++j) close += 1.0 - always_apart(b, i, j, d_m, &seen);
     }
     total += b.weight * std::max(0.0, 1.0 - close);
   }
