@@ -8,6 +8,8 @@
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 
+#include "engine/error_strata.hpp"
+
 namespace p3at::verifier::engine {
 namespace {
 
@@ -300,6 +302,36 @@ std::vector<Walker> reduce_walkers(const std::vector<Walker>& walkers, std::size
   return out;
 }
 
+namespace {
+
+/// reduce_walkers() within each stratum of the entry error (engine/error_strata):
+/// merging a pinned stratum with one that gets through would put their
+/// average beside the wall, which neither is. The middle stratum keeps
+/// `keep`, the others an eighth of it (they weigh 45 % between them, and
+/// what they must tell is mostly whether they get through). One stratum
+/// (no split): reduce_walkers() itself. (Made one cloud again once no walker
+/// had an obstacle within reach, the strata lost what they would have told
+/// at a second wall: tried, and not kept; docs/verifier.md.)
+std::vector<Walker> reduce_by_stratum(const std::vector<Walker>& children, std::size_t keep) {
+  const bool split = std::any_of(children.begin(), children.end(), [](const Walker& w) { return w.stratum != 0; });
+  if (!split) return reduce_walkers(children, keep);
+  std::vector<Walker> out;
+  for (std::size_t k = 0; k < kErrorStrata; ++k) {
+    std::vector<Walker> group;
+    for (const Walker& w : children) {
+      if (w.stratum == k) group.push_back(w);
+    }
+    if (group.empty()) continue;
+    for (Walker& w : reduce_walkers(group, k == 0 ? keep : std::max<std::size_t>(1, keep / 8))) {
+      w.stratum = static_cast<std::uint8_t>(k);
+      out.push_back(std::move(w));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 NoiseQuadrature noise_quadrature(const PathStepper& stepper, const Walker& start, std::int64_t persistence,
                                  std::size_t directions, std::size_t keep, std::size_t keep_near, std::size_t cap,
                                  LegTrajectory* record) {
@@ -329,15 +361,29 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
   // about with 3 % of its start points' weight turning the other way, drew
   // four of its eight directions with 97 % of the mass and was predicted
   // 0.21 s early (tests/unit/verifier/test_turn_about_entry_cli.cpp).
-  const bool even_starts = [&starts] {
-    const double first = starts.empty() ? 0.0 : starts.front().weight;
-    for (const Walker& w : starts) {
-      if (std::abs(w.weight - first) > 1e-9 * std::max(1.0, std::abs(first))) return false;
-    }
-    return true;
-  }();
-  const bool dealt = n_starts > 1 && n_starts <= directions && directions % n_starts == 0 && even_starts;
-  const std::size_t first_paths = dealt ? directions : n_starts * directions;
+  //
+  // Starts split into strata of the entry error (engine/error_strata) are
+  // dealt within each stratum: the strata are different robots' errors, not
+  // different places, and each must see every NOISE direction. `groups`
+  // holds each stratum's starts (one group when nothing is split).
+  std::vector<std::vector<std::size_t>> groups;
+  for (std::size_t s = 0; s < starts.size(); ++s) {
+    if (groups.size() <= starts[s].stratum) groups.resize(starts[s].stratum + std::size_t{1});
+    groups[starts[s].stratum].push_back(s);
+  }
+  std::erase_if(groups, [](const std::vector<std::size_t>& g) { return g.empty(); });
+  const bool even_starts = std::all_of(groups.begin(), groups.end(), [&starts](const std::vector<std::size_t>& g) {
+    const double first = starts[g.front()].weight;
+    return std::all_of(g.begin(), g.end(), [&](std::size_t s) {
+      return std::abs(starts[s].weight - first) <= 1e-9 * std::max(1.0, std::abs(first));
+    });
+  });
+  const std::size_t per_group = groups.empty() ? 1 : groups.front().size();
+  const bool same_groups = std::all_of(groups.begin(), groups.end(),
+                                       [per_group](const std::vector<std::size_t>& g) { return g.size() == per_group; });
+  const bool dealt =
+      per_group > 1 && per_group <= directions && directions % per_group == 0 && even_starts && same_groups;
+  const std::size_t first_paths = dealt ? groups.size() * directions : n_starts * directions;
   if (record != nullptr) {
     record->paths.assign(first_paths, {});
     record->weights.assign(first_paths, 0.0);
@@ -393,12 +439,16 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
     std::vector<Job> jobs;
     const double turn = static_cast<double>(segment) * kGoldenAngleRad;
     if (segment == 0 && dealt) {
-      // Dealt only evenly (above): every start takes directions / n of them.
-      const double per_start = static_cast<double>(directions / live.size());
-      for (std::size_t g = 0; g < directions; ++g) {
-        const std::size_t s = g % live.size();
-        jobs.push_back({s, g, g, 0, 2.0 * kPi * (static_cast<double>(g) + 0.5) / static_cast<double>(directions) + turn,
-                        live[s].weight / per_start});
+      // Dealt only evenly (above): every start of a group takes directions / n
+      // of them; a group's paths are one circle (start index: the group).
+      const double per_start = static_cast<double>(directions / per_group);
+      for (std::size_t group = 0; group < groups.size(); ++group) {
+        for (std::size_t g = 0; g < directions; ++g) {
+          const std::size_t s = groups[group][g % per_group];
+          jobs.push_back({s, g, group * directions + g, group,
+                          2.0 * kPi * (static_cast<double>(g) + 0.5) / static_cast<double>(directions) + turn,
+                          live[s].weight / per_start});
+        }
       }
     } else {
       for (std::size_t s = 0; s < live.size(); ++s) {
@@ -406,10 +456,16 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
         // by a fraction of their spacing (stratified); later draws are one
         // cloud of walkers.
         const double stagger = segment == 0 ? (static_cast<double>(s) + 0.5) / static_cast<double>(n_starts) : 0.5;
-        for (std::size_t j = 0; j < directions; ++j) {
+        // After the first draw an outer stratum of the entry error redraws
+        // over half the directions: what it must tell is mostly whether it
+        // gets past the wall, and it weighs 45 % in all (reduce_by_stratum).
+        const std::size_t ring = segment > 0 && live[s].stratum != 0
+                                     ? std::max<std::size_t>(std::min<std::size_t>(directions, 2), directions / 2)
+                                     : directions;
+        for (std::size_t j = 0; j < ring; ++j) {
           jobs.push_back({s, j, s * directions + j, segment == 0 ? s : 0,
-                          2.0 * kPi * (static_cast<double>(j) + stagger) / static_cast<double>(directions) + turn,
-                          live[s].weight / static_cast<double>(directions)});
+                          2.0 * kPi * (static_cast<double>(j) + stagger) / static_cast<double>(ring) + turn,
+                          live[s].weight / static_cast<double>(ring)});
         }
       }
     }
@@ -460,7 +516,7 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
     // slow-down, where a strong NOISE can hold the robot off its goal) the
     // distribution is shaped by the flow and needs more.
     const bool near = std::any_of(children.begin(), children.end(), [&](const Walker& w) { return stepper.delicate(w); });
-    live = reduce_walkers(children, near ? keep_near : keep);
+    live = reduce_by_stratum(children, near ? keep_near : keep);
     // Redrawn: the walkers are merged at every draw, so the test is on the
     // cloud (its weighted mean pose) rather than on one path.
     if (!live.empty()) {

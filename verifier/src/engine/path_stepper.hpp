@@ -9,6 +9,7 @@
 /// quadrature (noise_segments.hpp).
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 
 #include <Eigen/Core>
@@ -41,6 +42,9 @@ struct Walker {
   double at_goal_jitter_var = 0.0;
   double turn_jitter_var = 0.0;
   double weight = 1.0;          ///< quadrature weight (probability) of this path
+  /// Which slab of the entry error this path stands for (engine/error_strata;
+  /// 0: the middle, or no split). Paths of different strata are never merged.
+  std::uint8_t stratum = 0;
 };
 
 class PathStepper {
@@ -72,6 +76,9 @@ class PathStepper {
   /// True when nothing around the robot moves during the state (no driving
   /// teammate comes near): a path standing still then stays still.
   bool static_surroundings() const;
+  /// How far from the robot's true centre an obstacle can still push it
+  /// (AVOID_OBSTACLES' sphere beyond the body, from the sonar ring); 0 for a Spin.
+  double avoid_reach_m() const { return avoid_reach_m_; }
   /// Cycles between mean-path samples (one second).
   std::size_t sample_every() const { return sample_every_; }
 

@@ -13,6 +13,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
+#include "engine/error_strata.hpp"
 #include "engine/interruption.hpp"
 #include "engine/next_turn.hpp"
 #include "engine/noise_segments.hpp"
@@ -683,8 +684,17 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   // A Spin turns every start point alike (in place, by the same odometric
   // angle): one path from the mean, and its start points carried through
   // below, rather than a path per point.
-  const std::vector<Walker> entries =
+  std::vector<Walker> entries =
       entry_walkers(go, start, error_start, go != nullptr ? start_points : std::vector<StartPoint>{});
+  // Where a wall is within reach of the entry error's tail, the tail's runs
+  // may be pinned where the mean's get through (engine/error_strata.hpp).
+  std::size_t probe_cycles = 0;
+  if (go != nullptr) {
+    if (const auto axis = wall_sensitive_axis(start, *go, error_start, ctx.walls, stepper.avoid_reach_m());
+        axis && strata_may_differ(stepper, entries, *axis, directions, cycle_cap(ctx, state, start), probe_cycles)) {
+      entries = split_into_strata(entries, *axis);
+    }
+  }
   // Walkers kept between redraws: four per direction. Measured on
   // tests/data/accuracy/noise_redrawn_leg (2,000 runs): 8 kept gave a radius
   // curve 0.24 off (each merge of the lateral spread distorts the end arc),
@@ -703,7 +713,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
       noise_quadrature(stepper, entries, persistence, directions, keep, keep, cap, trajectory.get());
 
   StateAnalysis a;
-  a.cycles_simulated = quad.cycles_simulated;
+  a.cycles_simulated = quad.cycles_simulated + probe_cycles;
   a.blocked = quad.stuck;
   a.blocked_x_m = quad.stuck_x_m;  // divided by `blocked` below (where it is reported)
   a.blocked_y_m = quad.stuck_y_m;
