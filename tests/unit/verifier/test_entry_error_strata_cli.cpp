@@ -14,18 +14,15 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli_json.hpp"
 #include "cli_run.hpp"
 
 namespace {
 
+using p3at::test::run_json;
+
 std::string data(const std::string& mission, const std::string& file) {
   return std::string(P3AT_SOURCE_DIR) + "/tests/unit/verifier/data/entry_error_strata/" + mission + "/" + file;
-}
-
-nlohmann::json run_json(const std::string& command) {
-  const auto r = p3at::test::run_command(command);
-  REQUIRE(!r.out.empty());
-  return nlohmann::json::parse(r.out);
 }
 
 struct Both {

@@ -21,18 +21,15 @@
 #include <string>
 #include <vector>
 
+#include "cli_json.hpp"
 #include "cli_run.hpp"
 
 namespace {
 
+using p3at::test::run_json;
+
 std::string data(const std::string& folder, const std::string& name) {
   return std::string(P3AT_SOURCE_DIR) + "/tests/unit/verifier/data/" + folder + "/" + name;
-}
-
-nlohmann::json run_json(const std::string& command) {
-  const auto r = p3at::test::run_command(command);
-  REQUIRE(!r.out.empty());
-  return nlohmann::json::parse(r.out);
 }
 
 /// `vipars verify` against 1,000 `vipars validate` runs of data/<folder>'s
