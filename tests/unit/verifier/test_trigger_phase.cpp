@@ -68,3 +68,29 @@ TEST_CASE("in between, the gap's mean and variance are the integrals over the cr
     }
   }
 }
+
+TEST_CASE("the checks a crossing fires at: the normal's mass in each cycle before a check") {
+  using p3at::verifier::engine::check_shares;
+  SUBCASE("no spread: the one check at or after the crossing") {
+    const auto one = check_shares(14.88, 0.0);
+    REQUIRE(one.size() == 1);
+    CHECK(one.front().check == 15);
+    CHECK(one.front().share == 1.0);
+    CHECK(check_shares(15.0, 0.0).front().check == 15);  // on a check: fires there
+  }
+  SUBCASE("a crossing 0.12 cycle before check 15 with sd 0.1: check 16 takes Phi(-1.2)") {
+    const auto split = check_shares(14.88, 0.1);
+    double total = 0.0, at16 = 0.0;
+    for (const auto& c : split) {
+      total += c.share;
+      if (c.check == 16) at16 = c.share;
+      CHECK(c.check >= 14);
+      CHECK(c.check <= 17);
+    }
+    CHECK(total == doctest::Approx(1.0).epsilon(1e-9));
+    CHECK(at16 == doctest::Approx(0.11507).epsilon(1e-3));
+  }
+  SUBCASE("never a check before the first cycle") {
+    for (const auto& c : check_shares(0.2, 0.5)) CHECK(c.check >= 1);
+  }
+}

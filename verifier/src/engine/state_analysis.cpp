@@ -35,6 +35,10 @@ constexpr double kMinCrossingSdCycles = 1e-4;
 // the spread unbounded (and the cycle range below overflow): beyond this many
 // cycles the split is capped.
 constexpr double kMaxCrossingSdCycles = 50.0;
+// A group of paths that made other whole turns than the rest and carries
+// less than this share of the mass is slabbed with the rest (its own points
+// would be weight too small to matter).
+constexpr double kMinTurnGroupShare = 1e-3;
 
 /// The self-timed triggers of a still robot's state: the first that holds at
 /// pose q, in file order (the executive's order), or nothing.
@@ -209,14 +213,10 @@ Mixture1 held_duration(const std::vector<const FinishedPath*>& by_direction, std
       continue;
     }
     const double crossing = static_cast<double>(p.walker.cycles) - 1.0 + p.crossing_c;
-    const auto first = static_cast<std::int64_t>(std::floor(crossing - 8.0 * sd));
-    const auto last = static_cast<std::int64_t>(std::ceil(crossing + 8.0 * sd)) + 1;
-    for (std::int64_t n = std::max<std::int64_t>(first, 1); n <= last; ++n) {
-      const double nd = static_cast<double>(n);
-      const double share = normal_cdf((nd - crossing) / sd) - normal_cdf((nd - 1.0 - crossing) / sd);
-      if (!(share > 1e-12)) continue;
-      split.push_back({points[i].weight * share,
-                       points[i].mean + (nd - static_cast<double>(p.walker.cycles)) * cycle_s, points[i].var});
+    for (const CheckShare& c : check_shares(crossing, sd)) {
+      split.push_back({points[i].weight * c.share,
+                       points[i].mean + static_cast<double>(c.check - static_cast<std::int64_t>(p.walker.cycles)) * cycle_s,
+                       points[i].var});
     }
   }
   Mixture1 m{std::move(split)};
@@ -363,6 +363,66 @@ std::vector<Eigen::Vector2d> equal_weight_ends(const std::vector<FinishedPath>& 
   return out;
 }
 
+/// Whole turns between each path's continuous end heading and the first
+/// path's: paths that turned around one way or the other face the same way,
+/// a whole turn apart as numbers.
+std::vector<long> whole_turns(const std::vector<FinishedPath>& done) {
+  std::vector<long> turns(done.size(), 0);
+  for (std::size_t j = 1; j < done.size(); ++j) {
+    const double ref = done[0].walker.q.theta_rad;
+    const double theta = done[j].walker.q.theta_rad;
+    turns[j] = std::lround((theta - (ref + std::remainder(theta - ref, 2.0 * kPi))) / (2.0 * kPi));
+  }
+  return turns;
+}
+
+/// equal_weight_ends within each group of paths that made the same whole
+/// turns (`turns`, one per path), when more than one group has mass: the
+/// groups' errors differ by the rotation-scale error of a whole turn (15
+/// degrees at a 4 % scale error), so their true ends lie apart, each group
+/// tight, while their odometric ends share the AtGoal circle and their
+/// bearings overlap, and slabs by bearing averaged the groups into one
+/// blob. Each group gets slabs in proportion to its mass (at least one),
+/// `weights` each slab's probability; `weights` is left empty (equally
+/// likely slabs) when there is one group. Found on generated gen_7582's
+/// robot1 (tests/unit/verifier/data/turn_groups/spin_then_turn_about): its
+/// last leg's goal lies 179 degrees behind it, 15 % of 1,000 runs turn left
+/// and end 1.2 m from the rest (rotation scale 1.037), and the blob put 44 %
+/// of the robot within 0.8 m of its goal where the runs put 17 % (now 25 %).
+std::vector<Eigen::Vector2d> grouped_weight_ends(const std::vector<FinishedPath>& done, const std::vector<long>& turns,
+                                                 const Eigen::Vector2d& goal, const Eigen::Vector2d& mean,
+                                                 const Eigen::Vector2d& error_mean, std::size_t directions,
+                                                 const std::vector<Eigen::Vector2d>& moved, std::vector<double>& weights) {
+  weights.clear();
+  double total = 0.0;
+  std::map<long, double> group_mass;
+  for (std::size_t i = 0; i < done.size(); ++i) {
+    total += done[i].walker.weight;
+    group_mass[i < turns.size() ? turns[i] : 0] += done[i].walker.weight;
+  }
+  std::size_t groups = 0;
+  for (const auto& [g, m] : group_mass) groups += m > kMinTurnGroupShare * total ? 1 : 0;
+  if (groups < 2) return equal_weight_ends(done, goal, mean, error_mean, directions, moved);
+  std::vector<Eigen::Vector2d> out;
+  for (const auto& [g, m] : group_mass) {
+    if (!(m > 0.0)) continue;
+    std::vector<FinishedPath> members;
+    std::vector<Eigen::Vector2d> members_moved;
+    for (std::size_t i = 0; i < done.size(); ++i) {
+      if ((i < turns.size() ? turns[i] : 0) != g) continue;
+      members.push_back(done[i]);
+      if (!moved.empty()) members_moved.push_back(moved[i]);
+    }
+    const auto slabs = static_cast<std::size_t>(
+        std::max<long>(1, std::lround(static_cast<double>(directions) * m / total)));
+    for (const Eigen::Vector2d& d : equal_weight_ends(members, goal, mean, error_mean, slabs, members_moved)) {
+      out.push_back(d);
+      weights.push_back(m / total / static_cast<double>(slabs));
+    }
+  }
+  return out;
+}
+
 /// The expected firing's phase for the held quadrature (trigger_phase.hpp):
 /// each path's crossing time varies over its direction's arc by about the
 /// difference to its neighbours' (the paths are on a circle of NOISE
@@ -489,8 +549,8 @@ struct RestPoints {
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
 };
 
-RestPoints rest_points(const std::vector<FinishedPath>& done, bool one_per_path, const Eigen::Vector2d& goal,
-                       std::size_t directions, const Kinematics& k) {
+RestPoints rest_points(const std::vector<FinishedPath>& done, const std::vector<long>& turns, bool one_per_path,
+                       const Eigen::Vector2d& goal, std::size_t directions, const Kinematics& k) {
   RestPoints out;
   double total = 0.0;
   Eigen::Vector2d error_mean = Eigen::Vector2d::Zero();
@@ -513,7 +573,7 @@ RestPoints rest_points(const std::vector<FinishedPath>& done, bool one_per_path,
       for (const FinishedPath& p : done) out.delays.push_back(static_cast<double>(p.walker.cycles));
     }
   } else {
-    out.offsets = equal_weight_ends(done, goal, out.centre, error_mean, directions, moved);
+    out.offsets = grouped_weight_ends(done, turns, goal, out.centre, error_mean, directions, moved, out.weights);
   }
   Eigen::Matrix2d all = Eigen::Matrix2d::Zero(), shown = Eigen::Matrix2d::Zero();
   for (std::size_t j = 0; j < done.size(); ++j) {
@@ -689,10 +749,17 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   // Where a wall is within reach of the entry error's tail, the tail's runs
   // may be pinned where the mean's get through (engine/error_strata.hpp).
   std::size_t probe_cycles = 0;
+  // The probe at the mean, kept where the leg is not split: it is the held
+  // quadrature of these entries, which is stepped again below otherwise.
+  std::optional<NoiseQuadrature> probed_held;
   if (go != nullptr) {
-    if (const auto axis = wall_sensitive_axis(start, *go, error_start, ctx.walls, stepper.avoid_reach_m());
-        axis && strata_may_differ(stepper, entries, *axis, directions, cycle_cap(ctx, state, start), probe_cycles)) {
-      entries = split_into_strata(entries, *axis);
+    if (const auto axis = wall_sensitive_axis(start, *go, error_start, ctx.walls, stepper.avoid_reach_m())) {
+      NoiseQuadrature at_mean;
+      if (strata_may_differ(stepper, entries, *axis, directions, cycle_cap(ctx, state, start), probe_cycles, &at_mean)) {
+        entries = split_into_strata(entries, *axis);
+      } else {
+        probed_held = std::move(at_mean);
+      }
     }
   }
   // Walkers kept between redraws: four per direction. Measured on
@@ -709,11 +776,18 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   const bool interruptible = has_trigger_kind(robot, state, mission::TriggerKind::notified);
   auto trajectory = interruptible ? std::make_shared<LegTrajectory>() : nullptr;
   if (trajectory) trajectory->cycle_s = cycle_s;
-  NoiseQuadrature quad =
-      noise_quadrature(stepper, entries, persistence, directions, keep, keep, cap, trajectory.get());
+  // The probe is that quadrature only where nothing is recorded (the probe
+  // records no trajectory) and, for the segment quadrature, where nothing
+  // redraws (persistence 0: no NOISE).
+  const bool probe_is_held = probed_held.has_value() && !trajectory;
+  const bool probe_is_quad = probe_is_held && persistence == 0;
+  NoiseQuadrature quad = probe_is_quad
+                             ? std::move(*probed_held)
+                             : noise_quadrature(stepper, entries, persistence, directions, keep, keep, cap, trajectory.get());
 
   StateAnalysis a;
-  a.cycles_simulated = quad.cycles_simulated + probe_cycles;
+  // (The probes' work once: a reused probe's cycles are in probe_cycles.)
+  a.cycles_simulated = (probe_is_quad ? 0 : quad.cycles_simulated) + probe_cycles;
   a.blocked = quad.stuck;
   a.blocked_x_m = quad.stuck_x_m;  // divided by `blocked` below (where it is reported)
   a.blocked_y_m = quad.stuck_y_m;
@@ -734,8 +808,12 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
       go != nullptr ? 2.0 * go->dropoff_m / std::max(robot.max_speed_mps, 1e-3) / cycle_s : 0.0;
   const bool draw_spans_approach = go != nullptr && static_cast<double>(persistence) >= approach_cycles;
   if (quad.redraws > 0 && (draw_spans_approach || trajectory)) {
-    held = noise_quadrature(stepper, entries, 0, directions, directions, directions, cap, trajectory.get());
-    a.cycles_simulated += held.cycles_simulated;
+    if (probe_is_held && !probe_is_quad) {
+      held = std::move(*probed_held);
+    } else {
+      held = noise_quadrature(stepper, entries, 0, directions, directions, directions, cap, trajectory.get());
+      a.cycles_simulated += held.cycles_simulated;
+    }
     if (draw_spans_approach && held.stuck <= 0.0 && !redrawn_on_approach(held, persistence, approach_cycles)) ends = &held;
     // The held paths at the redrawn robot's pace (engine/trajectory_pace.hpp).
     if (trajectory) {
@@ -773,13 +851,14 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   // numbers they would face the other way. Bring every end heading within pi
   // of the first finished path's, remembering the whole turns between them
   // (error_given_end keeps those groups' errors apart).
-  std::vector<long> turns(ends->finished.size(), 0);
+  // (The segment quadrature's own turns too, before they are wrapped, where
+  // its paths give the rest points' shape below.)
+  const std::vector<long> quad_turns = whole_turns(quad.finished);
+  const std::vector<long> turns = ends == &quad ? quad_turns : whole_turns(ends->finished);
   for (std::size_t j = 1; j < ends->finished.size(); ++j) {
     const double ref = ends->finished[0].walker.q.theta_rad;
     double& theta = ends->finished[j].walker.q.theta_rad;
-    const double wrapped = ref + std::remainder(theta - ref, 2.0 * kPi);
-    turns[j] = std::lround((theta - wrapped) / (2.0 * kPi));
-    theta = wrapped;
+    theta = ref + std::remainder(theta - ref, 2.0 * kPi);
   }
   double finished = 0.0;
   for (const FinishedPath& p : ends->finished) {
@@ -869,8 +948,8 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
       a.end_weights = path_weights(ends->finished);
       if (!a.end_weights.empty()) end_cycles.clear();
     } else {
-      a.end_offsets = equal_weight_ends(ends->finished, Eigen::Vector2d(go->goal.x_m, go->goal.y_m), mean_xy, error_mean,
-                                        directions);
+      a.end_offsets = grouped_weight_ends(ends->finished, turns, Eigen::Vector2d(go->goal.x_m, go->goal.y_m), mean_xy,
+                                          error_mean, directions, {}, a.end_weights);
     }
     // Which path fired when, for the final position's time scores: only where
     // each point is one path (a NOISE held for the whole leg). A redrawn
@@ -900,7 +979,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
     if (stops_after) {
       const Eigen::Vector2d goal(go->goal.x_m, go->goal.y_m);
       const Kinematics& kin = ctx.model->kinematics;
-      const RestPoints at_ends = rest_points(ends->finished, one_per_path, goal, directions, kin);
+      const RestPoints at_ends = rest_points(ends->finished, turns, one_per_path, goal, directions, kin);
       // Where the paths come to rest is centred where `ends` says (the held
       // paths when one draw spans the approach: where the circle is crossed);
       // but the speed and heading at the crossing are a redrawn NOISE's, not
@@ -912,7 +991,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
       // sweep's gen_5126 (600 runs) it goes the other way, 0.087 against
       // 0.259, but the sweep as a whole favours it (docs/crosscheck.md).
       const bool redrawn_shape = ends != &quad && quad.redraws > 0 && !quad.finished.empty();
-      const RestPoints shape = redrawn_shape ? rest_points(quad.finished, false, goal, directions, kin) : at_ends;
+      const RestPoints shape = redrawn_shape ? rest_points(quad.finished, quad_turns, false, goal, directions, kin) : at_ends;
       const Eigen::Vector2d centre = at_ends.centre - (mean_xy + run_out(a.end, kin));
       for (const Eigen::Vector2d& d : shape.offsets) a.rest_offsets.push_back(d + centre);
       a.rest_weights = shape.weights;

@@ -34,6 +34,19 @@ CheckGap check_gap(double t, double sd) {
   return {m, std::max(second / mass - m * m, 0.0)};
 }
 
+std::vector<CheckShare> check_shares(double t, double sd) {
+  if (!(sd > 0.0)) return {{std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(t))), 1.0}};
+  std::vector<CheckShare> out;
+  const auto first = static_cast<std::int64_t>(std::floor(t - 8.0 * sd));
+  const auto last = static_cast<std::int64_t>(std::ceil(t + 8.0 * sd)) + 1;
+  for (std::int64_t n = std::max<std::int64_t>(first, 1); n <= last; ++n) {
+    const double nd = static_cast<double>(n);
+    const double share = normal_cdf((nd - t) / sd) - normal_cdf((nd - 1.0 - t) / sd);
+    if (share > 1e-12) out.push_back({n, share});
+  }
+  return out;
+}
+
 double expected_check_gap(double t, double sd) { return check_gap(t, sd).mean; }
 
 double check_gap_variance(double t, double sd) { return check_gap(t, sd).var; }

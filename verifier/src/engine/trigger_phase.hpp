@@ -11,6 +11,9 @@
 /// spread of T over its node's arc, the expected gap E[ceil(T) - T] is
 /// between the two.
 
+#include <cstdint>
+#include <vector>
+
 namespace p3at::verifier::engine {
 
 /// The gap G = ceil(X) - X between a crossing at X ~ N(t, sd^2) and the
@@ -26,6 +29,17 @@ struct CheckGap {
   double var = 1.0 / 12.0;
 };
 CheckGap check_gap(double t, double sd);
+
+/// The checks a crossing at X ~ N(t, sd^2) fires at: check n (cycles from
+/// the entry) when X falls in (n - 1, n], with P = Phi((n - t) / sd) -
+/// Phi((n - 1 - t) / sd), over the checks within 8 sd (from check 1; shares
+/// below 1e-12 left out). For sd = 0 the one check ceil(t) (t itself on a
+/// check) with share 1.
+struct CheckShare {
+  std::int64_t check = 0;
+  double share = 0.0;
+};
+std::vector<CheckShare> check_shares(double t, double sd);
 
 /// check_gap(t, sd).mean and .var.
 double expected_check_gap(double t, double sd);
