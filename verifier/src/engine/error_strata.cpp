@@ -92,7 +92,7 @@ std::optional<Eigen::Vector3d> wall_sensitive_axis(const BaseState& start, const
 }
 
 bool strata_may_differ(const PathStepper& stepper, const std::vector<Walker>& entries, const Eigen::Vector3d& axis,
-                       std::size_t directions, std::size_t cap, std::size_t& cycles, NoiseQuadrature* at_mean) {
+                       std::size_t directions, std::size_t cap, std::size_t& cycles) {
   // A share stuck below this is the quadrature's remainder, not a pinned stratum.
   constexpr double kStuckTolerance = 1e-3;
   const double outer = error_strata()[kErrorStrata - 2].z;
@@ -100,14 +100,10 @@ bool strata_may_differ(const PathStepper& stepper, const std::vector<Walker>& en
   const double shifts[3] = {0.0, outer, -outer};
   for (int k = 0; k < 3; ++k) {
     std::vector<Walker> shifted = entries;
-    // (The mean's probe steps the entries exactly as they are.)
-    if (k > 0) {
-      for (Walker& w : shifted) w.error.mean += shifts[k] * axis;
-    }
-    NoiseQuadrature held = noise_quadrature(stepper, shifted, 0, directions, directions, directions, cap);
+    for (Walker& w : shifted) w.error.mean += shifts[k] * axis;
+    const NoiseQuadrature held = noise_quadrature(stepper, shifted, 0, directions, directions, directions, cap);
     cycles += held.cycles_simulated;
     stuck[k] = held.stuck;
-    if (k == 0 && at_mean != nullptr) *at_mean = std::move(held);
   }
   return std::abs(stuck[1] - stuck[0]) > kStuckTolerance || std::abs(stuck[2] - stuck[0]) > kStuckTolerance;
 }

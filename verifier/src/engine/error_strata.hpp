@@ -65,8 +65,7 @@ std::optional<Eigen::Vector3d> wall_sensitive_axis(const BaseState& start, const
                                                    const ErrorState& error, const std::vector<Segment>& walls,
                                                    double reach_m);
 
-class PathStepper;       // engine/path_stepper.hpp
-struct NoiseQuadrature;  // engine/noise_segments.hpp
+class PathStepper;  // engine/path_stepper.hpp
 
 /// Whether the strata can differ in what matters most, getting through:
 /// the entries' held-NOISE paths (one draw for the whole state, the cheap
@@ -75,12 +74,9 @@ struct NoiseQuadrature;  // engine/noise_segments.hpp
 /// leg down a corridor, the walls within reach but never close) the split
 /// would cost its paths for nothing (generated gen_7547: one leg entered at
 /// 482 places after a patrol, 28 times the work). `cycles` gets the probes'
-/// work (the budget counts it). `at_mean`, when given, gets the probe at the
-/// error's mean: the held quadrature of the entries as they are, which the
-/// caller need not step again when it does not split.
+/// work (the budget counts it).
 bool strata_may_differ(const PathStepper& stepper, const std::vector<Walker>& entries, const Eigen::Vector3d& axis,
-                       std::size_t directions, std::size_t cap, std::size_t& cycles,
-                       NoiseQuadrature* at_mean = nullptr);
+                       std::size_t directions, std::size_t cap, std::size_t& cycles);
 
 /// Each walker as kErrorStrata walkers: its error's mean moved by z times
 /// `axis` (1 sd of it), its weight times the stratum's probability, its

@@ -749,17 +749,10 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   // Where a wall is within reach of the entry error's tail, the tail's runs
   // may be pinned where the mean's get through (engine/error_strata.hpp).
   std::size_t probe_cycles = 0;
-  // The probe at the mean, kept where the leg is not split: it is the held
-  // quadrature of these entries, which is stepped again below otherwise.
-  std::optional<NoiseQuadrature> probed_held;
   if (go != nullptr) {
-    if (const auto axis = wall_sensitive_axis(start, *go, error_start, ctx.walls, stepper.avoid_reach_m())) {
-      NoiseQuadrature at_mean;
-      if (strata_may_differ(stepper, entries, *axis, directions, cycle_cap(ctx, state, start), probe_cycles, &at_mean)) {
-        entries = split_into_strata(entries, *axis);
-      } else {
-        probed_held = std::move(at_mean);
-      }
+    if (const auto axis = wall_sensitive_axis(start, *go, error_start, ctx.walls, stepper.avoid_reach_m());
+        axis && strata_may_differ(stepper, entries, *axis, directions, cycle_cap(ctx, state, start), probe_cycles)) {
+      entries = split_into_strata(entries, *axis);
     }
   }
   // Walkers kept between redraws: four per direction. Measured on
@@ -776,18 +769,11 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   const bool interruptible = has_trigger_kind(robot, state, mission::TriggerKind::notified);
   auto trajectory = interruptible ? std::make_shared<LegTrajectory>() : nullptr;
   if (trajectory) trajectory->cycle_s = cycle_s;
-  // The probe is that quadrature only where nothing is recorded (the probe
-  // records no trajectory) and, for the segment quadrature, where nothing
-  // redraws (persistence 0: no NOISE).
-  const bool probe_is_held = probed_held.has_value() && !trajectory;
-  const bool probe_is_quad = probe_is_held && persistence == 0;
-  NoiseQuadrature quad = probe_is_quad
-                             ? std::move(*probed_held)
-                             : noise_quadrature(stepper, entries, persistence, directions, keep, keep, cap, trajectory.get());
+  NoiseQuadrature quad =
+      noise_quadrature(stepper, entries, persistence, directions, keep, keep, cap, trajectory.get());
 
   StateAnalysis a;
-  // (The probes' work once: a reused probe's cycles are in probe_cycles.)
-  a.cycles_simulated = (probe_is_quad ? 0 : quad.cycles_simulated) + probe_cycles;
+  a.cycles_simulated = quad.cycles_simulated + probe_cycles;
   a.blocked = quad.stuck;
   a.blocked_x_m = quad.stuck_x_m;  // divided by `blocked` below (where it is reported)
   a.blocked_y_m = quad.stuck_y_m;
@@ -808,12 +794,8 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
       go != nullptr ? 2.0 * go->dropoff_m / std::max(robot.max_speed_mps, 1e-3) / cycle_s : 0.0;
   const bool draw_spans_approach = go != nullptr && static_cast<double>(persistence) >= approach_cycles;
   if (quad.redraws > 0 && (draw_spans_approach || trajectory)) {
-    if (probe_is_held && !probe_is_quad) {
-      held = std::move(*probed_held);
-    } else {
-      held = noise_quadrature(stepper, entries, 0, directions, directions, directions, cap, trajectory.get());
-      a.cycles_simulated += held.cycles_simulated;
-    }
+    held = noise_quadrature(stepper, entries, 0, directions, directions, directions, cap, trajectory.get());
+    a.cycles_simulated += held.cycles_simulated;
     if (draw_spans_approach && held.stuck <= 0.0 && !redrawn_on_approach(held, persistence, approach_cycles)) ends = &held;
     // The held paths at the redrawn robot's pace (engine/trajectory_pace.hpp).
     if (trajectory) {
