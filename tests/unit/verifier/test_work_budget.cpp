@@ -5,6 +5,8 @@
 // the model did not compute).
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "outcome_mass.hpp"
@@ -53,4 +55,46 @@ TEST_CASE("work budget: the default leaves a shipped mission whole; a small one 
   REQUIRE(again);
   CHECK(again->work_cycles == cut->work_cycles);
   CHECK(again->work_cutoff_mass == cut->work_cutoff_mass);
+}
+
+TEST_CASE("work budget: past half of it, a leg entered from a new place takes the nearest place's analysis, flagged") {
+  // A patrol until relieved: each lap enters the same two legs again with a
+  // grown pose error, so each lap is new analyses, and the laps are what a
+  // budget cuts off (gen_7610, gen_7577: P 0 where the runs finish).
+  const mission::Mission m =
+      mission::load_mission_file(std::string(P3AT_SOURCE_DIR) + "/tests/unit/verifier/data/patrol.yaml");
+  Models models = load_models_file(kExample + "models.yaml");
+  models.environment.walls.clear();  // the beat is open floor
+  Result<SystemOutcome> whole = evaluate_system(m, models);
+  REQUIRE(whole);
+  REQUIRE(whole->work_cutoff_mass == 0.0);
+  REQUIRE(whole->budget_merged_mass == 0.0);
+  REQUIRE_FALSE(whole->work_pressure_merged);
+  Result<VerifyResult> full = verify(m, models, VerifyOptions{});
+  REQUIRE(full);
+  REQUIRE(full->p_joint > 0.5);
+
+  // Nine tenths of the work the whole evaluation simulates: without the
+  // reuse the last lap's legs would be cut off as failure. (At three
+  // quarters they still are: the budget runs out inside a leg's first entry,
+  // which has no earlier place to take an analysis from.)
+  Models tight = models;
+  tight.budget.max_work_cycles = whole->work_cycles * 9 / 10;
+  Result<SystemOutcome> reused = evaluate_system(m, tight);
+  REQUIRE(reused);
+  CHECK(reused->work_pressure_merged);
+  CHECK(reused->work_cutoff_mass == 0.0);
+  CHECK(reused->budget_merged_mass > 0.0);
+  CHECK(reused->work_cycles < whole->work_cycles);
+  CHECK(test::accounted_mass(*reused) == doctest::Approx(1.0).epsilon(1e-9));
+  Result<VerifyResult> r = verify(m, tight, VerifyOptions{});
+  REQUIRE(r);
+  // The coarser picture is close to the whole one, and the gate does not vouch for it.
+  CHECK(std::abs(r->p_joint - full->p_joint) <= 0.05);
+  const bool flagged = std::any_of(r->approximations.begin(), r->approximations.end(), [](const Approximation& a) {
+    return a.kind == ApproximationKind::places_merged_over_budget && !a.vouched &&
+           a.detail.find("max_work_cycles") != std::string::npos;
+  });
+  CHECK(flagged);
+  CHECK_FALSE(r->evaluable);
 }

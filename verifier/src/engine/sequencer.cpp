@@ -483,8 +483,17 @@ class Sequencer {
     ctx.walls = near_way(walls_, b, i, state);
     ctx.obstacles = obstacles_near(b, i, state, ctx.walls);
     ctx.movers = moving_teammates(b, i, state);
-    track.analysis = cached_analysis(ctx, i, state, track);
-    track.moved_start.setZero();
+    Eigen::Vector2d reused_from_elsewhere = Eigen::Vector2d::Zero();
+    bool reused = false;
+    track.analysis = cached_analysis(ctx, i, state, track, reused, reused_from_elsewhere);
+    track.moved_start = reused_from_elsewhere;
+    if (reused) {
+      b.coarse = 1.0;
+      outcome_.work_pressure_merged = true;
+      const bool seen = std::any_of(outcome_.budget_merges.begin(), outcome_.budget_merges.end(),
+                                    [&](const BudgetMerge& r) { return r.robot == i && r.state == state; });
+      if (!seen) outcome_.budget_merges.push_back({i, state});
+    }
     outcome_.subsystems += 1;
     note_path(b, i);
 
@@ -559,7 +568,20 @@ class Sequencer {
   /// the answer is what recomputing would give) and the work budget counts
   /// only the cycles really simulated. On generated 6-robot missions the same
   /// state was otherwise analysed once per branch (up to 32 times).
-  StateAnalysis cached_analysis(const StateContext& ctx, std::size_t i, std::size_t state, const Track& track) {
+  ///
+  /// Past kWorkPressureAt of the work budget, an entry with no analysis of its
+  /// own takes the analysis of the nearest place this robot entered the state
+  /// from (`reused`; `moved` is how far its start is from that one's, carried
+  /// as a merged start is: engine/moved_start.hpp). A leg entered from many
+  /// places is analysed once per place, and that count is what runs the
+  /// budget out: gen_7610's and gen_7577's robot2, relieved from a patrol, had
+  /// its next leg analysed 118 and 87 times (124 M cycles each), the rest of
+  /// the mass then cut off and counted as failure (P 0 where the runs
+  /// finish). The picture is coarser (the entry's heading, error and
+  /// teammates are the other place's), and the gate does not vouch for it
+  /// (`places-merged-over-budget`).
+  StateAnalysis cached_analysis(const StateContext& ctx, std::size_t i, std::size_t state, const Track& track,
+                                bool& reused, Eigen::Vector2d& moved) {
     std::string key;
     const auto put = [&key](double v) { key.append(reinterpret_cast<const char*>(&v), sizeof v); };
     put(static_cast<double>(i));
@@ -588,11 +610,28 @@ class Sequencer {
     }
     const auto it = analysis_cache_.find(key);
     if (it != analysis_cache_.end()) return it->second;
+    std::vector<MadeAnalysis>& made = analyses_made_[{i, state}];
+    const double spent = static_cast<double>(outcome_.work_cycles) /
+                         static_cast<double>(std::max<std::size_t>(1, models_.budget.max_work_cycles));
+    if (spent > kWorkPressureAt && !made.empty()) {
+      const auto apart = [&](const MadeAnalysis& m) {
+        const double turn = std::remainder(track.base.theta_rad - m.start.theta_rad, 2.0 * 3.14159265358979323846);
+        return std::hypot(track.base.x_m - m.start.x_m, track.base.y_m - m.start.y_m) + kHeadingMetresPerRad * std::abs(turn);
+      };
+      const auto nearest = std::min_element(made.begin(), made.end(),
+                                            [&](const MadeAnalysis& x, const MadeAnalysis& y) { return apart(x) < apart(y); });
+      reused = true;
+      moved = Eigen::Vector2d(track.base.x_m - nearest->start.x_m, track.base.y_m - nearest->start.y_m);
+      return analysis_cache_.at(nearest->key);
+    }
     StateAnalysis a = analyze_state(ctx, state, track.base, track.error, track.start_points);
     outcome_.work_cycles += a.cycles_simulated;
     // Bounded (the first entries stay: deterministic); an analysis holds a
     // trajectory for interruptible states, so the cache is kept modest.
-    if (analysis_cache_.size() < kMaxCachedAnalyses) analysis_cache_.emplace(std::move(key), a);
+    if (analysis_cache_.size() < kMaxCachedAnalyses) {
+      made.push_back({track.base, key});
+      analysis_cache_.emplace(std::move(key), a);
+    }
     return a;
   }
 
@@ -1744,6 +1783,15 @@ class Sequencer {
   /// outcome_.leg_entries' indices per (robot, state).
   std::map<std::pair<std::size_t, std::size_t>, std::vector<std::size_t>> leg_entries_of_;
   static constexpr std::size_t kMaxCachedAnalyses = 2048;
+  /// An analysis made, by robot and state: where it began and its cache key
+  /// (cached_analysis's reuse under work pressure picks the nearest).
+  struct MadeAnalysis {
+    BaseState start;
+    std::string key;
+  };
+  std::map<std::pair<std::size_t, std::size_t>, std::vector<MadeAnalysis>> analyses_made_;
+  static constexpr double kWorkPressureAt = 0.5;       ///< share of max_work_cycles spent
+  static constexpr double kHeadingMetresPerRad = 0.3;  ///< a radian of entry heading counts as 0.3 m of place
   std::map<std::string, StateAnalysis> analysis_cache_;
 };
 

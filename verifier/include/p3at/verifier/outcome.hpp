@@ -167,6 +167,10 @@ struct SystemOutcome {
   /// Mass of the branches still unevaluated when Budget::max_work_cycles ran
   /// out, counted as failure.
   double work_cutoff_mass = 0.0;
+  /// Past half of Budget::max_work_cycles, a state entered from a place it had
+  /// no analysis for took the nearest place's (Sequencer::cached_analysis);
+  /// recorded in budget_merges and budget_merged_mass like the branch budget's merges.
+  bool work_pressure_merged = false;
   std::size_t work_cycles = 0;    ///< robot control cycles the within-state models simulated
   std::size_t subsystems = 0;     ///< TR subsystems evaluated (Def. 10 steps), summed over branches
   std::size_t ordering_splits = 0;  ///< events where more than one robot could plausibly fire first
