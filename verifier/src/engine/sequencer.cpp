@@ -490,9 +490,7 @@ class Sequencer {
     if (reused) {
       b.coarse = 1.0;
       outcome_.work_pressure_merged = true;
-      const bool seen = std::any_of(outcome_.budget_merges.begin(), outcome_.budget_merges.end(),
-                                    [&](const BudgetMerge& r) { return r.robot == i && r.state == state; });
-      if (!seen) outcome_.budget_merges.push_back({i, state});
+      note_budget_merge_of(i, state);
     }
     outcome_.subsystems += 1;
     note_path(b, i);
@@ -622,16 +620,13 @@ class Sequencer {
                                             [&](const MadeAnalysis& x, const MadeAnalysis& y) { return apart(x) < apart(y); });
       reused = true;
       moved = Eigen::Vector2d(track.base.x_m - nearest->start.x_m, track.base.y_m - nearest->start.y_m);
-      return analysis_cache_.at(nearest->key);
+      return nearest->analysis->second;
     }
     StateAnalysis a = analyze_state(ctx, state, track.base, track.error, track.start_points);
     outcome_.work_cycles += a.cycles_simulated;
     // Bounded (the first entries stay: deterministic); an analysis holds a
     // trajectory for interruptible states, so the cache is kept modest.
-    if (analysis_cache_.size() < kMaxCachedAnalyses) {
-      made.push_back({track.base, key});
-      analysis_cache_.emplace(std::move(key), a);
-    }
+    if (analysis_cache_.size() < kMaxCachedAnalyses) made.push_back({track.base, analysis_cache_.emplace(std::move(key), a).first});
     return a;
   }
 
@@ -1665,12 +1660,16 @@ class Sequencer {
     for (std::size_t i = 0; i < a.robots.size(); ++i) {
       if ((a.robots[i].true_mean() - b.robots[i].true_mean()).norm() <= kSamePlaceM) continue;
       apart = true;
-      const std::size_t state = a.robots[i].state;
-      const bool seen = std::any_of(outcome_.budget_merges.begin(), outcome_.budget_merges.end(),
-                                    [&](const BudgetMerge& r) { return r.robot == i && r.state == state; });
-      if (!seen) outcome_.budget_merges.push_back({i, state});
+      note_budget_merge_of(i, a.robots[i].state);
     }
     return apart;
+  }
+
+  /// Records (once) that robot i's places in `state` were merged to keep within a budget.
+  void note_budget_merge_of(std::size_t i, std::size_t state) {
+    const bool seen = std::any_of(outcome_.budget_merges.begin(), outcome_.budget_merges.end(),
+                                  [&](const BudgetMerge& r) { return r.robot == i && r.state == state; });
+    if (!seen) outcome_.budget_merges.push_back({i, state});
   }
 
   void note_blocked(std::size_t i, std::size_t state, double x_m, double y_m, const std::string& why, double mass) {
@@ -1783,16 +1782,17 @@ class Sequencer {
   /// outcome_.leg_entries' indices per (robot, state).
   std::map<std::pair<std::size_t, std::size_t>, std::vector<std::size_t>> leg_entries_of_;
   static constexpr std::size_t kMaxCachedAnalyses = 2048;
-  /// An analysis made, by robot and state: where it began and its cache key
-  /// (cached_analysis's reuse under work pressure picks the nearest).
+  std::map<std::string, StateAnalysis> analysis_cache_;
+  /// An analysis made, by robot and state: where it began and its entry in
+  /// analysis_cache_ (map entries stay put; cached_analysis's reuse under
+  /// work pressure picks the nearest).
   struct MadeAnalysis {
     BaseState start;
-    std::string key;
+    std::map<std::string, StateAnalysis>::const_iterator analysis;
   };
   std::map<std::pair<std::size_t, std::size_t>, std::vector<MadeAnalysis>> analyses_made_;
   static constexpr double kWorkPressureAt = 0.5;       ///< share of max_work_cycles spent
   static constexpr double kHeadingMetresPerRad = 0.3;  ///< a radian of entry heading counts as 0.3 m of place
-  std::map<std::string, StateAnalysis> analysis_cache_;
 };
 
 }  // namespace
