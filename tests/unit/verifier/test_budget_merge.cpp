@@ -68,6 +68,8 @@ TEST_CASE("over the budget the bins merge: no mass is lost, and the answer is no
     CHECK(o->budget_merged_mass > 0.5);  // the merged branches' share: 1.00 at 4, 0.75 at 8
     REQUIRE(o->budget_merges.size() == 1);
     CHECK(o->budget_merges[0].robot == 0);
+    CHECK(o->budget_merges[0].branch_budget);
+    CHECK_FALSE(o->budget_merges[0].work_budget);
 
     const auto r = verify(m, with_budget(budget), VerifyOptions{});
     REQUIRE(r.ok());

@@ -86,6 +86,12 @@ TEST_CASE("work budget: past half of it, a leg entered from a new place takes th
   CHECK(reused->work_cutoff_mass == 0.0);
   CHECK(reused->budget_merged_mass > 0.0);
   CHECK(reused->work_cycles < whole->work_cycles);
+  // Each record says which budget merged it: here only the work budget did.
+  REQUIRE_FALSE(reused->budget_merges.empty());
+  for (const BudgetMerge& b : reused->budget_merges) {
+    CHECK(b.work_budget);
+    CHECK_FALSE(b.branch_budget);
+  }
   CHECK(test::accounted_mass(*reused) == doctest::Approx(1.0).epsilon(1e-9));
   Result<VerifyResult> r = verify(m, tight, VerifyOptions{});
   REQUIRE(r);
@@ -93,7 +99,8 @@ TEST_CASE("work budget: past half of it, a leg entered from a new place takes th
   CHECK(std::abs(r->p_joint - full->p_joint) <= 0.05);
   const bool flagged = std::any_of(r->approximations.begin(), r->approximations.end(), [](const Approximation& a) {
     return a.kind == ApproximationKind::places_merged_over_budget && !a.vouched &&
-           a.detail.find("max_work_cycles") != std::string::npos;
+           a.detail.find("max_work_cycles") != std::string::npos &&
+           a.detail.find("max_branches") == std::string::npos;
   });
   CHECK(flagged);
   CHECK_FALSE(r->evaluable);

@@ -472,13 +472,19 @@ class Detector {
 
   void budget_merges() {
     for (const BudgetMerge& b : o_.budget_merges) {
+      std::string how;
+      if (b.branch_budget) {
+        how = "its places (where messages found it) were merged into fewer to keep within the branch budget "
+              "(budget.max_branches " + std::to_string(models_.budget.max_branches) + ")";
+      }
+      if (b.work_budget) {
+        how += std::string(how.empty() ? "" : "; ") + "past half of budget.max_work_cycles (" +
+               std::to_string(models_.budget.max_work_cycles) +
+               "), a leg entered from a new place took the analysis of the nearest place it had been entered from";
+      }
       add(ApproximationKind::places_merged_over_budget, b.robot, MissionElement::state, b.state,
-          "its places (where messages found it) were merged into fewer to keep within the branch budget "
-          "(budget.max_branches " + std::to_string(models_.budget.max_branches) +
-              (o_.work_pressure_merged ? "; past half of budget.max_work_cycles, a leg entered from a new place "
-                                         "took the analysis of the nearest place it had been entered from" : "") + "; " +
-              num(o_.budget_merged_mass, 3) + " of the finished mass went through such merges): where it is, "
-              "and so its later legs, is pictured more coarsely than the model otherwise does");
+          how + " (" + num(o_.budget_merged_mass, 3) + " of the finished mass went through such merges): where it "
+          "is, and so its later legs, is pictured more coarsely than the model otherwise does");
     }
   }
 

@@ -490,7 +490,7 @@ class Sequencer {
     if (reused) {
       b.coarse = 1.0;
       outcome_.work_pressure_merged = true;
-      note_budget_merge_of(i, state);
+      note_budget_merge_of(i, state, true);
     }
     outcome_.subsystems += 1;
     note_path(b, i);
@@ -1660,16 +1660,19 @@ class Sequencer {
     for (std::size_t i = 0; i < a.robots.size(); ++i) {
       if ((a.robots[i].true_mean() - b.robots[i].true_mean()).norm() <= kSamePlaceM) continue;
       apart = true;
-      note_budget_merge_of(i, a.robots[i].state);
+      note_budget_merge_of(i, a.robots[i].state, false);
     }
     return apart;
   }
 
-  /// Records (once) that robot i's places in `state` were merged to keep within a budget.
-  void note_budget_merge_of(std::size_t i, std::size_t state) {
-    const bool seen = std::any_of(outcome_.budget_merges.begin(), outcome_.budget_merges.end(),
-                                  [&](const BudgetMerge& r) { return r.robot == i && r.state == state; });
-    if (!seen) outcome_.budget_merges.push_back({i, state});
+  /// Records (once per robot and state) that robot i's places in `state`
+  /// were merged to keep within a budget: the work budget's (a reused
+  /// analysis) or the branch budget's, each said in the approximation's text.
+  void note_budget_merge_of(std::size_t i, std::size_t state, bool work_budget) {
+    auto at = std::find_if(outcome_.budget_merges.begin(), outcome_.budget_merges.end(),
+                           [&](const BudgetMerge& r) { return r.robot == i && r.state == state; });
+    if (at == outcome_.budget_merges.end()) at = outcome_.budget_merges.insert(at, BudgetMerge{i, state, false, false});
+    (work_budget ? at->work_budget : at->branch_budget) = true;
   }
 
   void note_blocked(std::size_t i, std::size_t state, double x_m, double y_m, const std::string& why, double mass) {

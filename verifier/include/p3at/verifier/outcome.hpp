@@ -138,6 +138,8 @@ struct ConcurrentLegs {
 /// `places-merged-over-budget`). One record per (robot, state).
 struct BudgetMerge {
   std::size_t robot = 0, state = 0;
+  bool branch_budget = false;  ///< its places merged into fewer (Budget::max_branches)
+  bool work_budget = false;    ///< a leg took a nearby place's analysis (past half of max_work_cycles)
 };
 
 /// Robot `robot` entered GoToGuarded state `state` from odometry position
