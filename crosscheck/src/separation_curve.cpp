@@ -41,9 +41,15 @@ std::optional<SeparationScore> score_separation(const verifier::SystemOutcome& o
   const std::uint64_t n = closest.size();
   std::vector<double> verify;
   std::vector<ValidationPoint> validation;
+  // Every d and the distance it is decided at, asked in one pass (the
+  // branches' pairs are cut into stretches once, not once per d).
+  std::vector<double> asked = axis.values;
+  for (const double d : axis.values) asked.push_back(verifier::decided_separation(d, true, step_m));
+  const std::vector<double> answers = verifier::probability_no_pair_within(outcome, asked);
   SeparationScore s;
-  for (const double d : axis.values) {
-    const double v = verifier::probability_no_pair_within(outcome, d);
+  for (std::size_t a = 0; a < axis.values.size(); ++a) {
+    const double d = axis.values[a];
+    const double v = answers[a];
     const std::uint64_t k = measured(d);
     const team_sim::Interval ci = team_sim::wilson_interval(k, n);
     ValidationPoint w;
@@ -52,7 +58,7 @@ std::optional<SeparationScore> score_separation(const verifier::SystemOutcome& o
     w.ci_high = ci.high;
     w.p_shift_low = static_cast<double>(measured(d * (1.0 - kShiftFraction))) / static_cast<double>(n);
     w.p_shift_high = static_cast<double>(measured(d * (1.0 + kShiftFraction))) / static_cast<double>(n);
-    const double decided = verifier::probability_no_pair_within(outcome, verifier::decided_separation(d, true, step_m));
+    const double decided = answers[axis.values.size() + a];
     s.overconfident_points += overconfident_go(decided, w);
     verify.push_back(v);
     validation.push_back(w);

@@ -524,6 +524,91 @@ TEST_SUITE("evaluation") {
     CHECK(v::probability_no_pair_within(o, d) == doctest::Approx(0.3 * a0 + 0.4 * a1 + 0.3 * a0).epsilon(1e-12));
   }
 
+  TEST_CASE("eq. (6) for the team over a curve of d: one pass gives each d's own answer, number for number") {
+    // The cross-check asks a whole curve of d in one call (each pair's
+    // stretches cut once, a branch no longer asked at a d where it already
+    // counts nothing). Three robots, so pairs with no samples, a pair that
+    // meets on every lap (Boole's sum passes 1 early: that branch counts 0
+    // at the larger d), a d beyond what the samples vouch for and d = 0.
+    const auto pass = [](double y, double var, double t0) {
+      std::vector<v::SeparationSample> samples;
+      for (int k = 0; k <= 10; ++k) samples.push_back(separation_sample(t0 + k, -20.0 + 4.0 * k, y, var, k > 0));
+      return samples;
+    };
+    v::SystemOutcome o;
+    v::Branch three = branch(0.5, robot(150, 25, 0, 0, 1.0), robot(160, 25, 30, 0, 1.0));
+    three.robots.push_back(three.robots[1]);
+    o.branches.assign(3, three);
+    o.branches[0].separations = pass(1.5, 0.25, 0.0);
+    for (int lap = 0; lap < 6; ++lap) {  // robots 0 and 2 pass each other six times, 0.6 m apart
+      for (v::SeparationSample s : pass(0.6, 0.04, 100.0 * lap)) {
+        s.robot_j = 2;
+        if (s.time_s == 100.0 * lap) s.joined = false;
+        o.branches[1].separations.push_back(s);
+      }
+    }
+    o.branches[2].separations = pass(1.2, 0.25, 0.0);
+    o.branches[1].weight = 0.3;
+    o.branches[2].weight = 0.2;
+    const std::vector<double> ds{0.0, 0.3, 0.55, 1.0, 1.4, 2.9, 3.5};
+    const std::vector<double> together = v::probability_no_pair_within(o, ds);
+    REQUIRE(together.size() == ds.size());
+    for (std::size_t k = 0; k < ds.size(); ++k) {
+      CAPTURE(ds[k]);
+      // What each branch and pair gives alone (no shared stretches, no early stop).
+      double expected = 0.0;
+      for (const v::Branch& b : o.branches) {
+        double close = 0.0;
+        for (std::size_t i = 0; i < 3; ++i) {
+          for (std::size_t j = i + 1; j < 3; ++j) close += 1.0 - v::probability_always_apart(b, i, j, ds[k]);
+        }
+        expected += b.weight * std::max(0.0, 1.0 - close);
+      }
+      CHECK(together[k] == expected);
+      CHECK(v::probability_no_pair_within(o, ds[k]) == expected);
+    }
+    CHECK(together.front() == doctest::Approx(1.0));
+    CHECK(together.back() == 0.0);  // beyond half of the horizon: not vouched for
+    // At 1.0 the laps' branch is close for certain (six passes 0.6 m apart)
+    // and counts nothing; the others keep their own pass's probability.
+    CHECK(v::probability_always_apart(o.branches[1], 0, 2, 1.0) == 0.0);
+    CHECK(together[3] == doctest::Approx(0.5 * v::probability_always_apart(o.branches[0], 0, 1, 1.0) +
+                                         0.2 * v::probability_always_apart(o.branches[2], 0, 1, 1.0))
+                             .epsilon(1e-12));
+    CHECK(together[3] > 0.3);
+  }
+
+  TEST_CASE("eq. (6) for the team: the lightest branches, up to 1e-6 of the mass, count as failure unasked") {
+    // A loop ends in many branches, nearly all of them very light (gen_7610:
+    // 2,303 branches, 12 hold 0.99999): those summing to at most
+    // kNegligibleBranchMass are not integrated and add nothing, so the team's
+    // P(no pair within d) stays a lower bound, lower by at most that mass.
+    const auto pass = [](double y) {
+      std::vector<v::SeparationSample> samples;
+      for (int k = 0; k <= 10; ++k) samples.push_back(separation_sample(k, -20.0 + 4.0 * k, y, 0.25, k > 0));
+      return samples;
+    };
+    v::SystemOutcome o;
+    o.branches.push_back(branch(1.0 - 3e-6, robot(150, 25, 0, 0, 1.0), robot(160, 25, 30, 0, 1.0)));
+    o.branches[0].separations = pass(4.0);  // never near 1 m: P(apart) 1
+    for (const double w : {4e-7, 5e-7, 2.1e-6}) {
+      v::Branch light = o.branches[0];
+      light.weight = w;
+      light.separations = pass(4.0);
+      o.branches.push_back(light);
+    }
+    const double d = 1.0;
+    // Each branch alone: 1 less the grid's outside mass (beyond 5 sd, ~1e-6).
+    const double a = v::probability_always_apart(o.branches[0], 0, 1, d);
+    REQUIRE(a == doctest::Approx(1.0).epsilon(1e-5));
+    REQUIRE(v::probability_always_apart(o.branches[1], 0, 1, d) == a);
+    // 4e-7 + 5e-7 are unasked (0.9e-6); with 2.1e-6 they would pass 1e-6.
+    const double p = v::probability_no_pair_within(o, d);
+    CHECK(p == doctest::Approx((1.0 - 3e-6) * a + 2.1e-6 * a).epsilon(1e-15));
+    CHECK(p < a * (1.0 - 0.8e-6));
+    CHECK(p > a * (1.0 - 1.0e-6));
+  }
+
   TEST_CASE("eq. (6) negated: together at all times is refused once the pair parts beyond the horizon") {
     const v::Criterion c = v::parse_criterion(
         "criterion together\nnetwork Delay<t1> ; (Delay<t2> # At<robot1, p>) |\n        Delay<t3> ; (Delay<t4> # At<robot2, q>)\n"
