@@ -12,14 +12,14 @@ set bmargin 6
 set tics out
 set object 1 rectangle from 170, graph 0 to 187.5, graph 1 behind fillcolor rgb "#dddddd" fillstyle solid 1.0 noborder
 set label 1 "High confidence\n(unsuccessful)" at 178.75, graph 0.93 center front
-set object 2 rectangle from 187.5, graph 0 to 202.5, graph 1 behind fillcolor rgb "#fff4c2" fillstyle solid 1.0 noborder
-set label 2 "Uncertain" at 195, graph 0.93 center front
-set object 3 rectangle from 202.5, graph 0 to 230, graph 1 behind fillcolor rgb "#d9f0d3" fillstyle solid 1.0 noborder
-set label 3 "High confidence\n(successful)" at 216.25, graph 0.93 center front
+set object 2 rectangle from 187.5, graph 0 to 201.5, graph 1 behind fillcolor rgb "#fff4c2" fillstyle solid 1.0 noborder
+set label 2 "Uncertain" at 194.5, graph 0.93 center front
+set object 3 rectangle from 201.5, graph 0 to 230, graph 1 behind fillcolor rgb "#d9f0d3" fillstyle solid 1.0 noborder
+set label 3 "High confidence\n(successful)" at 215.75, graph 0.93 center front
 set arrow 90 from 200, graph 0 to 200, graph 1 nohead back dashtype 2 linecolor rgb "#555555"
 set label 90 "criterion 200 s" at 200, graph 0.02 left offset 0.5,0.6 textcolor rgb "#555555"
-set arrow 91 from 193, 0.37492899188550144 to 193, 0.37940000000000002 nohead front linecolor rgb "black" linewidth 3
-set label 91 "max |verify − validate| = 0.004\nat 193 s" at 193, 0.3771644959427507 left offset 1,0 front
+set arrow 91 from 201, 0.92710977589960974 to 201, 0.91949999999999998 nohead front linecolor rgb "black" linewidth 3
+set label 91 "max |verify − validate| = 0.008\nat 201 s" at 201, 0.92330488794980492 right offset -1,0 front
 set terminal pngcairo size 1000,620 noenhanced font "DejaVu Sans,11"
 set output "fig09_time.png"
 plot "fig09_time.dat" using 1:4:5 with filledcurves fillcolor rgb "#fdb863" fillstyle transparent solid 0.55 noborder title "validation 95 % Wilson interval", \

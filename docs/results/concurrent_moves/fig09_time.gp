@@ -18,8 +18,8 @@ set object 3 rectangle from 152.25, graph 0 to 165, graph 1 behind fillcolor rgb
 set label 3 "High confidence\n(successful)" at 158.625, graph 0.93 center front
 set arrow 90 from 140, graph 0 to 140, graph 1 nohead back dashtype 2 linecolor rgb "#555555"
 set label 90 "criterion 140 s" at 140, graph 0.02 left offset 0.5,0.6 textcolor rgb "#555555"
-set arrow 91 from 117, 0.072715122886354108 to 117, 0.046199999999999998 nohead front linecolor rgb "black" linewidth 3
-set label 91 "max |verify − validate| = 0.027\nat 117 s" at 117, 0.059457561443177057 left offset 1,0 front
+set arrow 91 from 117, 0.071730142868707436 to 117, 0.046199999999999998 nohead front linecolor rgb "black" linewidth 3
+set label 91 "max |verify − validate| = 0.026\nat 117 s" at 117, 0.058965071434353714 left offset 1,0 front
 set terminal pngcairo size 1000,620 noenhanced font "DejaVu Sans,11"
 set output "fig09_time.png"
 plot "fig09_time.dat" using 1:4:5 with filledcurves fillcolor rgb "#fdb863" fillstyle transparent solid 0.55 noborder title "validation 95 % Wilson interval", \

@@ -10,16 +10,16 @@ set grid front linecolor rgb "#bbbbbb"
 set key outside below center horizontal
 set bmargin 6
 set tics out
-set object 1 rectangle from 150, graph 0 to 162.75, graph 1 behind fillcolor rgb "#dddddd" fillstyle solid 1.0 noborder
-set label 1 "High confidence\n(unsuccessful)" at 156.375, graph 0.93 center front
-set object 2 rectangle from 162.75, graph 0 to 174.75, graph 1 behind fillcolor rgb "#fff4c2" fillstyle solid 1.0 noborder
-set label 2 "Uncertain" at 168.75, graph 0.93 center front
+set object 1 rectangle from 150, graph 0 to 163.25, graph 1 behind fillcolor rgb "#dddddd" fillstyle solid 1.0 noborder
+set label 1 "High confidence\n(unsuccessful)" at 156.625, graph 0.93 center front
+set object 2 rectangle from 163.25, graph 0 to 174.75, graph 1 behind fillcolor rgb "#fff4c2" fillstyle solid 1.0 noborder
+set label 2 "Uncertain" at 169, graph 0.93 center front
 set object 3 rectangle from 174.75, graph 0 to 185, graph 1 behind fillcolor rgb "#d9f0d3" fillstyle solid 1.0 noborder
 set label 3 "High confidence\n(successful)" at 179.875, graph 0.93 center front
 set arrow 90 from 170, graph 0 to 170, graph 1 nohead back dashtype 2 linecolor rgb "#555555"
 set label 90 "criterion 170 s" at 170, graph 0.02 left offset 0.5,0.6 textcolor rgb "#555555"
-set arrow 91 from 172, 0.81614216493099045 to 172, 0.82999999999999996 nohead front linecolor rgb "black" linewidth 3
-set label 91 "max |verify − validate| = 0.014\nat 172 s" at 172, 0.82307108246549521 right offset -1,0 front
+set arrow 91 from 168.5, 0.48697988934497982 to 168.5, 0.5 nohead front linecolor rgb "black" linewidth 3
+set label 91 "max |verify − validate| = 0.013\nat 168.5 s" at 168.5, 0.49348994467248991 right offset -1,0 front
 set terminal pngcairo size 1000,620 noenhanced font "DejaVu Sans,11"
 set output "fig09_time.png"
 plot "fig09_time.dat" using 1:4:5 with filledcurves fillcolor rgb "#fdb863" fillstyle transparent solid 0.55 noborder title "validation 95 % Wilson interval", \

@@ -13,7 +13,7 @@ set rmargin at screen 0.8
 set colorbox user origin screen 0.83, screen 0.15 size screen 0.02, screen 0.7
 set cbtics add ("limit 0.08" 0.080000000000000002)
 set palette defined (0 "white", 0.3 "#fee08b", 0.65 "#f46d43", 1 "#67001f")
-set label 1 "max 0.021 at 172 s, 0.89 m" at 172, 0.89000000000000001 point pointtype 6 pointsize 3 linecolor rgb "black" offset 1.5,1.5 front
+set label 1 "max 0.021 at 168.5 s, 0.76 m" at 168.5, 0.76000000000000001 point pointtype 6 pointsize 3 linecolor rgb "black" offset 1.5,1.5 front
 set terminal pngcairo size 1000,680 noenhanced font "DejaVu Sans,11"
 set output "fig14_error.png"
 plot "fig14_error.dat" using 1:2:3 with image notitle

@@ -84,8 +84,11 @@ TEST_CASE("redrawn NOISE: more redraws average the wander out, so the duration's
 
 TEST_CASE("a held leg's duration is a smooth distribution, not a staircase of one spike per NOISE direction") {
   // A short leg with NOISE held: 8 quadrature directions, 8 durations. As
-  // spikes, P(t <= T) would jump by 1/8 at each; each component now stands
-  // for its arc of directions, with the width its neighbours give it.
+  // spikes, P(t <= T) would jump by 1/8 at each (by 1/4 where a straight
+  // leg's directions pair up); the duration is now T interpolated over the
+  // circle of directions (engine/held_duration), whose density piles up at
+  // the fastest and slowest directions (an arcsine law) but never in steps
+  // of a direction's share.
   const SystemOutcome o = evaluate(one_leg_mission(2.5, 0.5, 0.2, 1'000'000));
   REQUIRE(o.branches.size() == 1);
   const Mixture1& t = o.branches[0].completion_time_s;
@@ -95,7 +98,7 @@ TEST_CASE("a held leg's duration is a smooth distribution, not a staircase of on
   for (double x = mean - 4 * sd; x < mean + 4 * sd; x += sd / 50.0) {
     biggest_step = std::max(biggest_step, t.cdf(x + sd / 50.0) - t.cdf(x));
   }
-  CHECK(biggest_step < 0.05);
+  CHECK(biggest_step < 0.1);
   for (const Component1& c : t.components) CHECK(c.var > 0.0);
 }
 

@@ -14,6 +14,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "engine/error_strata.hpp"
+#include "engine/held_duration.hpp"
 #include "engine/interruption.hpp"
 #include "engine/next_turn.hpp"
 #include "engine/noise_segments.hpp"
@@ -28,13 +29,6 @@ constexpr double kDegToRad = kPi / 180.0;
 // Cycles a state may take, beyond its nominal length, before its path is
 // declared stuck: generous, so a slow but moving robot is never called stuck.
 constexpr std::size_t kMinCycleCap = 3000;
-// A crossing-time spread below this (cycles) puts less than 1e-12 of the
-// mass on another check unless the crossing is that close to one: kept whole.
-constexpr double kMinCrossingSdCycles = 1e-4;
-// An approach that has all but stalled (a step of almost nothing) would make
-// the spread unbounded (and the cycle range below overflow): beyond this many
-// cycles the split is capped.
-constexpr double kMaxCrossingSdCycles = 50.0;
 // A group of paths that made other whole turns than the rest and carries
 // less than this share of the mass is slabbed with the rest (its own points
 // would be weight too small to matter).
@@ -152,77 +146,6 @@ ErrorState error_given_end(const std::vector<FinishedPath>& done, const std::vec
   }
   if (paths != nullptr) reduce(*paths, kMaxErrorComponents);
   return out;
-}
-
-/// The duration of one exit when NOISE was held for the whole state: one
-/// value per quadrature direction, each standing for the arc of directions
-/// around it. Over that arc the duration varies by about half the difference
-/// of its two neighbours, so each point becomes a uniform of that width (as a
-/// Gaussian of the same variance) instead of a spike; the points are pulled
-/// toward their mean so that the total variance stays the quadrature's (the
-/// periodic trapezoid rule gets it right already). Without the widths a
-/// short leg's P(t <= Tmax) is a staircase of `directions` steps.
-/// Then each point is split over the cycles its trigger can fire at when the
-/// crossing T (cycles from the entry) moves by the odometry's random error,
-/// N(0, crossing_sd^2): the check that fires is ceil(T), with probability
-/// Phi((n - T) / sd) - Phi((n - 1 - T) / sd) at cycle n. Without it a leg
-/// whose deterministic crossing falls just before a check is one spike,
-/// where validation fires at that check or the next about half the time
-/// (crosscheck gen_1007, NOISE gain 0: verify 1.000 at 15.70 s, validation
-/// 0.501).
-Mixture1 held_duration(const std::vector<const FinishedPath*>& by_direction, std::size_t directions, double cycle_s,
-                       std::size_t max_components) {
-  std::vector<Component1> points;
-  std::vector<const FinishedPath*> point_paths;
-  double mass = 0.0, mean = 0.0;
-  for (const FinishedPath* p : by_direction) {
-    if (!p) continue;
-    mass += p->walker.weight;
-    mean += p->walker.weight * static_cast<double>(p->walker.cycles) * cycle_s;
-  }
-  mean /= mass;
-  double spread = 0.0, widths = 0.0;
-  for (std::size_t j = 0; j < directions; ++j) {
-    const FinishedPath* p = by_direction[j];
-    if (!p) continue;
-    const double value = static_cast<double>(p->walker.cycles) * cycle_s;
-    double var = 0.0;
-    const FinishedPath* prev = by_direction[(j + directions - 1) % directions];
-    const FinishedPath* next = by_direction[(j + 1) % directions];
-    if (directions >= 3 && prev && next) {
-      const double range = 0.5 * std::abs(static_cast<double>(next->walker.cycles) - static_cast<double>(prev->walker.cycles)) * cycle_s;
-      var = range * range / 12.0;
-    }
-    points.push_back({p->walker.weight / mass, value, var});
-    point_paths.push_back(p);
-    spread += p->walker.weight / mass * (value - mean) * (value - mean);
-    widths += p->walker.weight / mass * var;
-  }
-  const double pull = spread > 0.0 ? std::sqrt(std::max(0.0, spread - widths) / spread) : 1.0;
-  if (pull < 1.0 && spread > 0.0 && widths > spread) {
-    // Widths larger than the spread (a few outliers): keep the spread, scale the widths.
-    for (Component1& c : points) c.var *= spread / widths;
-  }
-  for (Component1& c : points) c.mean = mean + pull * (c.mean - mean);
-  std::vector<Component1> split;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const FinishedPath& p = *point_paths[i];
-    const double sd = std::min(p.crossing_sd, kMaxCrossingSdCycles);
-    if (!(p.crossing_c >= 0.0) || !(sd > kMinCrossingSdCycles)) {
-      split.push_back(points[i]);
-      continue;
-    }
-    const double crossing = static_cast<double>(p.walker.cycles) - 1.0 + p.crossing_c;
-    for (const CheckShare& c : check_shares(crossing, sd)) {
-      split.push_back({points[i].weight * c.share,
-                       points[i].mean + static_cast<double>(c.check - static_cast<std::int64_t>(p.walker.cycles)) * cycle_s,
-                       points[i].var});
-    }
-  }
-  Mixture1 m{std::move(split)};
-  m.normalise();
-  reduce(m, max_components);
-  return m;
 }
 
 /// The duration of one exit when NOISE redrew within the state: the cycles
@@ -990,36 +913,58 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
       if (p.exit == t) mass += p.walker.weight;
     }
     if (mass <= 0.0) continue;
+    // The first draw's firings: each start point's directions are a circle
+    // of their own, over which the duration is interpolated (held_duration).
+    // A redrawn NOISE's later firings are a cloud of merged walkers, each
+    // given a kernel (redrawn_duration_by_draw). Before, the first draw's
+    // firings went into that cloud too whenever the leg ran past one redraw:
+    // the kernel spread them below the fastest direction's time (crosscheck
+    // gen_7568's first leg, held 130 cycles: verify P(t <= 7.25 s) 0.050
+    // where no run of 2,000 had finished).
     Mixture1 duration;
-    if (quad.redraws == 0) {
-      // Each start point's directions are a circle of their own.
-      for (std::size_t s = 0; s < entries.size(); ++s) {
-        std::vector<const FinishedPath*> by_direction(directions, nullptr);
-        double mass_s = 0.0;
-        for (const FinishedPath& p : quad.finished) {
-          if (p.exit == t && p.start == s) {
-            by_direction[p.direction] = &p;
-            mass_s += p.walker.weight;
-          }
-        }
-        if (!(mass_s > 0.0)) continue;
-        const Mixture1 part = held_duration(by_direction, directions, cycle_s, ctx.models->budget.max_components);
-        for (const Component1& c : part.components) duration.components.push_back({c.weight * mass_s, c.mean, c.var});
+    std::map<std::size_t, HeldCircle> circles;
+    std::vector<double> values, ws;
+    std::vector<std::size_t> segments;
+    double later_mass = 0.0;
+    const auto circle_of = [&](std::size_t from) -> HeldCircle& {
+      HeldCircle& c = circles[from];
+      if (c.fired.empty()) {
+        c.fired.assign(directions, nullptr);
+        // Redrawn: a direction that ended nothing under the first draw was
+        // still running at its end.
+        c.running.assign(directions, quad.redraws > 0);
+        c.draw_end_cycles = static_cast<double>(persistence);
       }
-      duration.normalise();
-      reduce(duration, ctx.models->budget.max_components);
-    } else {
-      std::vector<double> values, ws;
-      std::vector<std::size_t> segments;
-      for (const FinishedPath& p : quad.finished) {
-        if (p.exit != t) continue;
-        values.push_back(static_cast<double>(p.walker.cycles) * cycle_s);
-        ws.push_back(p.walker.weight);
-        segments.push_back(p.segment);
+      return c;
+    };
+    for (const FinishedPath& p : quad.finished) {
+      if (p.segment == 0 && p.direction < directions) {
+        HeldCircle& circle = circle_of(p.start);
+        circle.running[p.direction] = false;
+        if (p.exit == t) circle.fired[p.direction] = &p;
       }
-      duration = redrawn_duration_by_draw(values, ws, segments, static_cast<double>(persistence) * cycle_s,
-                                          ctx.models->budget.max_components);
+      if (p.exit != t || (p.segment == 0 && p.direction < directions)) continue;
+      values.push_back(static_cast<double>(p.walker.cycles) * cycle_s);
+      ws.push_back(p.walker.weight);
+      segments.push_back(p.segment);
+      later_mass += p.walker.weight;
     }
+    const auto add_part = [&duration](const Mixture1& part, double part_mass) {
+      for (const Component1& c : part.components) duration.components.push_back({c.weight * part_mass, c.mean, c.var});
+    };
+    for (const auto& entry : circles) {
+      const HeldCircle& circle = entry.second;
+      double mass_s = 0.0;
+      for (const FinishedPath* p : circle.fired) mass_s += p ? p->walker.weight : 0.0;
+      if (mass_s > 0.0) add_part(held_duration(circle, cycle_s, ctx.models->budget.max_components), mass_s);
+    }
+    if (later_mass > 0.0) {
+      add_part(redrawn_duration_by_draw(values, ws, segments, static_cast<double>(persistence) * cycle_s,
+                                        ctx.models->budget.max_components),
+               later_mass);
+    }
+    duration.normalise();
+    reduce(duration, ctx.models->budget.max_components);
     a.exits.push_back({t, mass, std::move(duration)});
   }
   a.path = quad.mean_path;

@@ -1,0 +1,155 @@
+#include "engine/held_duration.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <optional>
+
+#include "engine/trigger_phase.hpp"
+
+namespace p3at::verifier::engine {
+namespace {
+
+// Points per half arc between two directions. The checks are a cycle apart
+// and T rarely varies by more than a few cycles over a half arc, so 16
+// points resolve the shape (the peaks where T turns) well below a cycle.
+constexpr std::size_t kPointsPerHalfArc = 16;
+// A crossing-time spread below this (cycles) puts less than 1e-12 of the
+// mass on another check unless the crossing is that close to one: kept whole.
+constexpr double kMinCrossingSdCycles = 1e-4;
+// An approach that has all but stalled would make the spread unbounded:
+// beyond this many cycles the split is capped.
+constexpr double kMaxCrossingSdCycles = 50.0;
+
+/// The continuous crossing time, in cycles from the entry: interpolated
+/// within the last cycle where the trigger was crossed by moving toward it;
+/// otherwise (fired at once, or by another kind of trigger) half a cycle
+/// before the check that fired, so that the check is its ceiling again.
+double crossing_time(const FinishedPath& p) {
+  const double cycles = static_cast<double>(p.walker.cycles);
+  return p.crossing_c >= 0.0 ? cycles - 1.0 + p.crossing_c : cycles - 0.5;
+}
+
+double crossing_sd(const FinishedPath& p) {
+  return p.crossing_c >= 0.0 ? std::min(p.crossing_sd, kMaxCrossingSdCycles) : 0.0;
+}
+
+/// The slope at a node from its two secants. Where T keeps rising or
+/// falling through the node, Fritsch and Carlson's harmonic mean: the
+/// interpolant then never overshoots its nodes (a kink in T, where a
+/// direction starts to meet an obstacle, does not ring). Where the node is a
+/// turning point of the samples, the central difference: T's true extreme
+/// lies between the nodes, beyond the nearest sample, and a zero slope
+/// there would cut it off (T = 100 + 20 cos(phi) at 8 directions: the
+/// samples reach 118.5, the interpolant 119.85, the truth 120; at the top,
+/// cutting it off is the optimistic error).
+/// A flat side (a zero secant) is a kink, not a turn: slope zero, so a run
+/// of equal samples beside a rise stays flat instead of dipping below them.
+double node_slope(double left, double right) {
+  if (left * right > 0.0) return 2.0 / (1.0 / left + 1.0 / right);
+  if (left * right < 0.0) return 0.5 * (left + right);
+  return 0.0;
+}
+
+}  // namespace
+
+Mixture1 held_duration(const HeldCircle& circle, double cycle_s, std::size_t max_components) {
+  const std::vector<const FinishedPath*>& fired = circle.fired;
+  const std::size_t n = fired.size();
+  double mass = 0.0;
+  for (const FinishedPath* p : fired) {
+    if (p) mass += p->walker.weight;
+  }
+  if (!(mass > 0.0)) return {};
+  const auto running = [&](std::size_t j) { return j < circle.running.size() && circle.running[j]; };
+
+  // The value the arc from node j reaches at neighbour k: k's own crossing
+  // when it fired this exit; for a running k, the later of the redraw and
+  // j's trend from its other neighbour carried one step on; none otherwise.
+  const auto toward = [&](std::size_t j, std::size_t k, std::size_t other) -> std::optional<double> {
+    if (fired[k]) return crossing_time(*fired[k]);
+    if (!running(k)) return std::nullopt;
+    const double t = crossing_time(*fired[j]);
+    const double trend = fired[other] ? t - crossing_time(*fired[other]) : 0.0;
+    return std::max(circle.draw_end_cycles, t + trend);
+  };
+
+  // Node j's slope per direction step, from the values its arcs reach:
+  // both sides give node_slope, one side its secant, none zero.
+  const auto slope_at = [&](std::size_t j) {
+    const std::size_t prev = (j + n - 1) % n, next = (j + 1) % n;
+    const double t = crossing_time(*fired[j]);
+    const std::optional<double> a = toward(j, prev, next), b = toward(j, next, prev);
+    if (a && b) return node_slope(t - *a, *b - t);
+    if (a) return t - *a;
+    if (b) return *b - t;
+    return 0.0;
+  };
+
+  // The check that fires is ceil(T) when the crossing T moves by the
+  // odometry's random error, N(0, sd^2): check n with probability
+  // Phi((n - T) / sd) - Phi((n - 1 - T) / sd). Without it a leg whose
+  // deterministic crossing falls just before a check is one spike, where
+  // validation fires at that check or the next about half the time
+  // (crosscheck gen_1007, NOISE gain 0: verify 1.000 at 15.70 s, validation
+  // 0.501).
+  std::map<std::int64_t, double> by_check;
+  const auto add = [&](double weight, double t, double sd) {
+    for (const CheckShare& c : check_shares(t, sd > kMinCrossingSdCycles ? sd : 0.0)) by_check[c.check] += weight * c.share;
+  };
+  for (std::size_t j = 0; j < n; ++j) {
+    const FinishedPath* p = fired[j];
+    if (!p) continue;
+    const double w = p->walker.weight / mass;
+    const double t0 = crossing_time(*p), sd0 = crossing_sd(*p);
+    if (n < 3) {  // two directions are not a circle to interpolate on
+      add(w, t0, sd0);
+      continue;
+    }
+    const double slope = slope_at(j);
+    // The half arcs toward each neighbour: s in (0, 1/2) from this node.
+    for (const int side : {-1, +1}) {
+      const std::size_t k = side > 0 ? (j + 1) % n : (j + n - 1) % n;
+      const std::size_t other = side > 0 ? (j + n - 1) % n : (j + 1) % n;
+      const std::optional<double> end = toward(j, k, other);
+      const double half = 0.5 * w;
+      if (!end) {
+        add(half, t0, sd0);
+        continue;
+      }
+      const double t1 = *end;
+      const double sd1 = fired[k] ? crossing_sd(*fired[k]) : sd0;
+      // Hermite in s from this node (s = 0) toward the neighbour (s = 1),
+      // the slopes signed along the way; toward a running neighbour the
+      // secant (it has no slope of its own).
+      const double m0 = side * slope;
+      const double m1 = fired[k] ? side * slope_at(k) : t1 - t0;
+      for (std::size_t i = 0; i < kPointsPerHalfArc; ++i) {
+        const double s = 0.5 * (static_cast<double>(i) + 0.5) / static_cast<double>(kPointsPerHalfArc);
+        const double s2 = s * s, s3 = s2 * s;
+        const double t = (2.0 * s3 - 3.0 * s2 + 1.0) * t0 + (s3 - 2.0 * s2 + s) * m0 + (-2.0 * s3 + 3.0 * s2) * t1 +
+                         (s3 - s2) * m1;
+        add(half / static_cast<double>(kPointsPerHalfArc), t, sd0 + s * (sd1 - sd0));
+      }
+    }
+  }
+  // On a circle, each check's mass is a cycle-wide component (the variance
+  // of a uniform over one cycle), not a spike. Spikes are what a lone
+  // robot's completion is, but the sequencer races these durations against
+  // teammates' and messages' (interruption bins, orderings), and there
+  // spikes meeting at one check made all-or-nothing orderings: on fresh
+  // gen_7666 (5 robots) the radius curve went from 0.226 to 0.443 off, and
+  // to 0.202 with the width. A leg without NOISE (one direction) has one
+  // deterministic path, and keeps its spikes: a check it fires at for sure.
+  const double width_var = n >= 3 ? cycle_s * cycle_s / 12.0 : 0.0;
+  Mixture1 m;
+  for (const auto& [check, weight] : by_check) {
+    m.components.push_back({weight, static_cast<double>(check) * cycle_s, width_var});
+  }
+  m.normalise();
+  reduce(m, max_components);
+  return m;
+}
+
+}  // namespace p3at::verifier::engine

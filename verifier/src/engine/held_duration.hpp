@@ -1,0 +1,42 @@
+#pragma once
+/// The duration of one exit of a motion state whose NOISE direction was held
+/// for the whole state (no redraw before the paths fired): the held
+/// quadrature's paths, one per equally spaced NOISE direction, are samples of
+/// the crossing time T(phi) as a function of the direction phi, which is
+/// uniform on the circle. The duration's distribution is that of T(phi) over
+/// the circle (docs/verifier.md, "The held durations over the circle").
+
+#include <cstddef>
+#include <vector>
+
+#include "engine/noise_segments.hpp"
+#include "p3at/verifier/mog.hpp"
+
+namespace p3at::verifier::engine {
+
+/// One start point's circle of NOISE directions under its first draw.
+struct HeldCircle {
+  /// The path of direction j that fired this exit (nullptr where direction
+  /// j fired another exit, got stuck or was still running).
+  std::vector<const FinishedPath*> fired;
+  /// Direction j was still running when the NOISE was redrawn, at
+  /// `draw_end_cycles` from the entry: its crossing lies beyond that.
+  std::vector<bool> running;
+  double draw_end_cycles = 0.0;
+};
+
+/// Between two neighbouring directions that both fired the exit, T is
+/// interpolated (cubic Hermite: monotone where the samples keep rising or
+/// falling, through the extreme where they turn) and each half of the arc
+/// belongs to its nearer direction's weight. Toward a
+/// neighbour still running at the redraw, T is interpolated toward the
+/// later of the redraw and the node's own trend carried on (the runs
+/// between fire later and later as they near the running direction); toward
+/// one that fired another exit or got stuck, the half arc stays at the
+/// node's T. Each point of the arc then fires at the check its crossing
+/// falls before, spread by the odometry's random error (check_shares), and
+/// the checks' masses (at whole cycles of `cycle_s`, each a cycle wide on a
+/// circle of three or more directions) are reduced to `max_components`.
+Mixture1 held_duration(const HeldCircle& circle, double cycle_s, std::size_t max_components);
+
+}  // namespace p3at::verifier::engine
