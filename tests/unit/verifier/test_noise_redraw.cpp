@@ -4,8 +4,12 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "p3at/mission/loader.hpp"
+#include "p3at/verifier/approximations.hpp"
 #include "p3at/verifier/models.hpp"
 #include "p3at/verifier/verify.hpp"
 
@@ -108,4 +112,30 @@ TEST_CASE("redrawn NOISE: the same input gives the same bytes") {
   REQUIRE(a.branches.size() == b.branches.size());
   CHECK(a.branches[0].completion_time_s == b.branches[0].completion_time_s);
   CHECK(a.branches[0].robots[0].final_components.size() == b.branches[0].robots[0].final_components.size());
+}
+
+TEST_CASE("a redrawn NOISE that can hold the robot off its AtGoal circle is noise-redrawn-strong, not vouched") {
+  // Inside the dropoff the pull toward the goal is (d - dz) / (dropoff - dz):
+  // it falls below a NOISE gain of 0.14 at 0.04 + 0.14 x 0.86 = 0.16 m, outside
+  // a 0.1 m AtGoal circle (fresh gen_7686: over-confident GO while vouched),
+  // inside a 0.2 m one.
+  const auto kinds = [](double radius_m) {
+    const mission::Mission m = one_leg_mission(4.0, 0.9, 0.14, 125, radius_m, 0.04);
+    std::vector<std::pair<ApproximationKind, bool>> out;
+    // Only the NOISE kinds (the hand-made models also lack a calibration speed).
+    for (const Approximation& a : detect_approximations_before_evaluation(m, perfect_models(m))) {
+      if (a.kind == ApproximationKind::noise_redrawn_strong || a.kind == ApproximationKind::noise_redrawn_in_leg) {
+        out.emplace_back(a.kind, a.vouched);
+      }
+    }
+    return out;
+  };
+  const auto held = kinds(0.1);
+  REQUIRE(held.size() == 1);
+  CHECK(held[0].first == ApproximationKind::noise_redrawn_strong);
+  CHECK_FALSE(held[0].second);
+  const auto reached = kinds(0.2);
+  REQUIRE(reached.size() == 1);
+  CHECK(reached[0].first == ApproximationKind::noise_redrawn_in_leg);
+  CHECK(reached[0].second);
 }

@@ -18,7 +18,7 @@ namespace p3at::verifier {
 
 enum class ApproximationKind {
   noise_redrawn_in_leg,        ///< NOISE redrawn within a leg, dropoff < 1 m and gain <= 0.15
-  noise_redrawn_strong,        ///< NOISE redrawn within a leg with dropoff >= 1 m or gain > 0.15
+  noise_redrawn_strong,        ///< NOISE redrawn within a leg with dropoff >= 1 m, gain > 0.15, or able to hold the robot off its AtGoal circle
   message_interrupts_motion,   ///< a Notified transition leaves a GoToGuarded or Spin state
   fsa_loop,                    ///< a back-edge in a robot's FSA (a patrol)
   robots_racing,               ///< three or more robots whose next events race (pairwise products)
