@@ -75,17 +75,23 @@ Mixture1 held_duration(const HeldCircle& circle, double cycle_s, std::size_t max
     return std::max(circle.draw_end_cycles, t + trend);
   };
 
-  // Node j's slope per direction step, from the values its arcs reach:
-  // both sides give node_slope, one side its secant, none zero.
-  const auto slope_at = [&](std::size_t j) {
+  // Each fired node's slope per direction step, from the values its arcs
+  // reach: both sides give node_slope, one side its secant, none zero.
+  // Both arcs at a node use it, and so does each neighbour's arc toward it.
+  std::vector<double> slope(n, 0.0);
+  for (std::size_t j = 0; n >= 3 && j < n; ++j) {
+    if (!fired[j]) continue;
     const std::size_t prev = (j + n - 1) % n, next = (j + 1) % n;
     const double t = crossing_time(*fired[j]);
     const std::optional<double> a = toward(j, prev, next), b = toward(j, next, prev);
-    if (a && b) return node_slope(t - *a, *b - t);
-    if (a) return t - *a;
-    if (b) return *b - t;
-    return 0.0;
-  };
+    if (a && b) {
+      slope[j] = node_slope(t - *a, *b - t);
+    } else if (a) {
+      slope[j] = t - *a;
+    } else if (b) {
+      slope[j] = *b - t;
+    }
+  }
 
   // The check that fires is ceil(T) when the crossing T moves by the
   // odometry's random error, N(0, sd^2): check n with probability
@@ -107,7 +113,6 @@ Mixture1 held_duration(const HeldCircle& circle, double cycle_s, std::size_t max
       add(w, t0, sd0);
       continue;
     }
-    const double slope = slope_at(j);
     // The half arcs toward each neighbour: s in (0, 1/2) from this node.
     for (const int side : {-1, +1}) {
       const std::size_t k = side > 0 ? (j + 1) % n : (j + n - 1) % n;
@@ -123,8 +128,8 @@ Mixture1 held_duration(const HeldCircle& circle, double cycle_s, std::size_t max
       // Hermite in s from this node (s = 0) toward the neighbour (s = 1),
       // the slopes signed along the way; toward a running neighbour the
       // secant (it has no slope of its own).
-      const double m0 = side * slope;
-      const double m1 = fired[k] ? side * slope_at(k) : t1 - t0;
+      const double m0 = side * slope[j];
+      const double m1 = fired[k] ? side * slope[k] : t1 - t0;
       for (std::size_t i = 0; i < kPointsPerHalfArc; ++i) {
         const double s = 0.5 * (static_cast<double>(i) + 0.5) / static_cast<double>(kPointsPerHalfArc);
         const double s2 = s * s, s3 = s2 * s;

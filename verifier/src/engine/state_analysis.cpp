@@ -942,8 +942,9 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
         HeldCircle& circle = circle_of(p.start);
         circle.running[p.direction] = false;
         if (p.exit == t) circle.fired[p.direction] = &p;
+        continue;
       }
-      if (p.exit != t || (p.segment == 0 && p.direction < directions)) continue;
+      if (p.exit != t) continue;
       values.push_back(static_cast<double>(p.walker.cycles) * cycle_s);
       ws.push_back(p.walker.weight);
       segments.push_back(p.segment);
