@@ -7,6 +7,9 @@
 //   are pinned 1.3 m from a side wall (44 % of 1,000 runs). Verify said 0.1 %.
 // - jamb (gen_7456): leg4 passes a doorway's jamb; the runs on one side of
 //   the error are pinned against it (32 % of 1,000 runs). Verify said 0.
+// - wall end (gen_7689, seeds 7681-7720): the other way, verify pinned far
+//   more than the runs; a band of the error read along the axis
+//   (engine/stuck_profile.hpp).
 // `vipars verify` against 300 `vipars validate` runs each (about 3 s each in release).
 #include <doctest/doctest.h>
 
@@ -68,4 +71,20 @@ TEST_CASE("jamb: the runs on one side of the error are pinned against the doorwa
   CHECK(b.verify_blocked > 0.15);
   CHECK(b.verify_blocked < b.runs_stuck + 0.1);
   CHECK(b.verify_p_time < 0.9);
+}
+
+TEST_CASE("wall end: a narrow band of the entry error meets a free-standing wall's end head on") {
+  // Fresh gen_7689 (seeds 7681-7720): leg3 is entered with the middle
+  // stratum's mean heading straight at the end of a 1.6 m wall, where the
+  // avoidance's push balances the goal's pull; the strata either side get
+  // through. Slab by slab the whole middle stratum was pinned: verify 0.558
+  // against 1,000 runs' 0.044.
+  const Both b = verify_and_validate("wall_end");
+  REQUIRE(b.runs_stuck < 0.1);
+  // Measured: verify 0.113 against 300 runs' 0.040 (1,000 runs: 0.044). The
+  // model's own paths pin for z in about [-0.1, 0.2] sd of the axis (and in
+  // the outer tail, which stays a slab): wider than the runs' band.
+  CHECK(b.verify_blocked < 0.2);
+  // Not below the runs: what the model cannot place, it keeps pinned.
+  CHECK(b.verify_blocked > b.runs_stuck - 0.02);
 }

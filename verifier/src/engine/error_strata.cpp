@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <limits>
 
 #include <Eigen/Eigenvalues>
 
@@ -22,9 +24,10 @@ constexpr double kTailSds = 3.0;
 /// Points along the leg at which the shift and the walls are measured.
 constexpr int kLegPoints = 16;
 
+// Slab edges on the positive side; the middle slab is |z| < 0.75.
+constexpr double kEdges[] = {0.75, 1.5, 2.25};
+
 std::array<ErrorStratum, kErrorStrata> make_strata() {
-  // Slab edges on the positive side; the middle slab is |z| < 0.75.
-  constexpr double kEdges[] = {0.75, 1.5, 2.25};
   std::array<ErrorStratum, kErrorStrata> out{};
   const double middle = normal_cdf(kEdges[0]) - normal_cdf(-kEdges[0]);
   out[0] = {0.0, middle};
@@ -44,6 +47,15 @@ std::array<ErrorStratum, kErrorStrata> make_strata() {
 const std::array<ErrorStratum, kErrorStrata>& error_strata() {
   static const std::array<ErrorStratum, kErrorStrata> strata = make_strata();
   return strata;
+}
+
+StratumSlab stratum_slab(std::size_t k) {
+  if (k == 0) return {-kEdges[0], kEdges[0]};
+  const std::size_t edge = (k - 1) / 2;  // strata 1, 2 share edge 0; 3, 4 edge 1; 5, 6 edge 2
+  const double lo = kEdges[edge];
+  const double hi = edge + 1 < std::size(kEdges) ? kEdges[edge + 1] : std::numeric_limits<double>::infinity();
+  if (k % 2 == 1) return {lo, hi};  // odd strata are on the positive side (make_strata)
+  return {-hi, -lo};
 }
 
 double strata_variance() {
@@ -108,16 +120,33 @@ bool strata_may_differ(const PathStepper& stepper, const std::vector<Walker>& en
   return std::abs(stuck[1] - stuck[0]) > kStuckTolerance || std::abs(stuck[2] - stuck[0]) > kStuckTolerance;
 }
 
+namespace {
+
+/// What the strata carry between them leaves each one's covariance; it
+/// stays positive semidefinite because axis axis^T <= cov (axis = S u,
+/// |u| = 1) and the strata carry less than all of it.
+Eigen::Matrix3d within_stratum(const Eigen::Matrix3d& cov, const Eigen::Vector3d& axis) {
+  const Eigen::Matrix3d within = cov - strata_variance() * axis * axis.transpose();
+  return 0.5 * (within + within.transpose());
+}
+
+}  // namespace
+
+std::vector<Walker> shifted_along(const std::vector<Walker>& walkers, const Eigen::Vector3d& axis, double z) {
+  std::vector<Walker> out = walkers;
+  for (Walker& w : out) {
+    w.error.mean += z * axis;
+    w.error.cov = within_stratum(w.error.cov, axis);
+    w.stratum = 0;
+  }
+  return out;
+}
+
 std::vector<Walker> split_into_strata(const std::vector<Walker>& walkers, const Eigen::Vector3d& axis) {
-  const Eigen::Matrix3d carried = strata_variance() * axis * axis.transpose();
   std::vector<Walker> out;
   out.reserve(walkers.size() * kErrorStrata);
   for (const Walker& w : walkers) {
-    // What the strata carry between them leaves each one's covariance; it
-    // stays positive semidefinite because axis axis^T <= cov (axis = S u,
-    // |u| = 1) and the strata carry less than all of it.
-    Eigen::Matrix3d within = w.error.cov - carried;
-    within = 0.5 * (within + within.transpose());
+    const Eigen::Matrix3d within = within_stratum(w.error.cov, axis);
     for (std::size_t k = 0; k < kErrorStrata; ++k) {
       Walker s = w;
       s.error.mean += error_strata()[k].z * axis;

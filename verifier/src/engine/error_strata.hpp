@@ -49,6 +49,12 @@ struct ErrorStratum {
 inline constexpr std::size_t kErrorStrata = 7;
 const std::array<ErrorStratum, kErrorStrata>& error_strata();
 
+/// Stratum k's slab of z: [lo, hi] (+-infinity for the outer tails).
+struct StratumSlab {
+  double lo = 0.0, hi = 0.0;
+};
+StratumSlab stratum_slab(std::size_t k);
+
 /// The share of the axis's variance the strata carry between them
 /// (sum w z^2); the rest is within the slabs.
 double strata_variance();
@@ -82,5 +88,10 @@ bool strata_may_differ(const PathStepper& stepper, const std::vector<Walker>& en
 /// `axis` (1 sd of it), its weight times the stratum's probability, its
 /// covariance less strata_variance() axis axis^T, and Walker::stratum set.
 std::vector<Walker> split_into_strata(const std::vector<Walker>& walkers, const Eigen::Vector3d& axis);
+
+/// The walkers as one stratum at z: each error's mean moved by z times
+/// `axis`, its covariance the strata's (less strata_variance() axis axis^T),
+/// stratum 0 (engine/stuck_profile's probes).
+std::vector<Walker> shifted_along(const std::vector<Walker>& walkers, const Eigen::Vector3d& axis, double z);
 
 }  // namespace p3at::verifier::engine

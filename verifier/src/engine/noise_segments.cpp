@@ -426,6 +426,9 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
     out.stuck += w.weight;
     out.stuck_x_m += w.weight * w.q.x_m;
     out.stuck_y_m += w.weight * w.q.y_m;
+    out.stuck_by_stratum[w.stratum] += w.weight;
+    out.stuck_x_by_stratum[w.stratum] += w.weight * w.q.x_m;
+    out.stuck_y_by_stratum[w.stratum] += w.weight * w.q.y_m;
   };
   for (std::size_t segment = 0; !live.empty(); ++segment) {
     if (segment > 0) ++out.redraws;

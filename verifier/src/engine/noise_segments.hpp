@@ -17,10 +17,12 @@
 /// held off its goal by a strong NOISE that escapes at some later redraw) is
 /// carried as the mass that is still moving, segment after segment.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "engine/error_strata.hpp"
 #include "engine/leg_trajectory.hpp"
 #include "engine/path_stepper.hpp"
 
@@ -48,6 +50,8 @@ struct NoiseQuadrature {
   double stuck = 0.0;              ///< mass that never fired an exit: at the cycle cap, standing still (noise_segments.cpp), or a vanishing remainder
   double stuck_x_m = 0.0;          ///< mass-weighted sum of where the stuck walkers were (divide by stuck)
   double stuck_y_m = 0.0;
+  /// The same per stratum of the entry error (Walker::stratum; all in 0 when unsplit).
+  std::array<double, kErrorStrata> stuck_by_stratum{}, stuck_x_by_stratum{}, stuck_y_by_stratum{};
   std::size_t redraws = 0;         ///< segments after the first that carried mass
   std::vector<PathSample> mean_path;  ///< the mean odometric position every second (finished paths stay put)
   std::size_t cycles_simulated = 0;

@@ -1036,7 +1036,11 @@ class Sequencer {
     };
     std::vector<Candidate> candidates;
     for (std::size_t i = 0; i < b.robots.size(); ++i) {
-      for (std::size_t p = 0; p < b.robots[i].pending.size(); ++p) candidates.push_back({i, p});
+      for (std::size_t p = 0; p < b.robots[i].pending.size(); ++p) {
+        // An exit whose time has no mass left never fires (its residual is
+        // empty): compared as a rival it would leave none plausible.
+        if (!b.robots[i].pending[p].residual.components.empty()) candidates.push_back({i, p});
+      }
     }
     if (candidates.empty()) {
       const bool done = std::all_of(b.robots.begin(), b.robots.end(), [](const Track& t) { return t.final; });

@@ -18,6 +18,7 @@
 #include "engine/interruption.hpp"
 #include "engine/next_turn.hpp"
 #include "engine/noise_segments.hpp"
+#include "engine/stuck_profile.hpp"
 #include "engine/trajectory_pace.hpp"
 #include "engine/trigger_phase.hpp"
 
@@ -672,9 +673,13 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   // Where a wall is within reach of the entry error's tail, the tail's runs
   // may be pinned where the mean's get through (engine/error_strata.hpp).
   std::size_t probe_cycles = 0;
+  std::optional<Eigen::Vector3d> strata_axis;  // set where the entries are split
+  std::vector<Walker> unsplit;
   if (go != nullptr) {
     if (const auto axis = wall_sensitive_axis(start, *go, error_start, ctx.walls, stepper.avoid_reach_m());
         axis && strata_may_differ(stepper, entries, *axis, directions, cycle_cap(ctx, state, start), probe_cycles)) {
+      strata_axis = axis;
+      unsplit = entries;
       entries = split_into_strata(entries, *axis);
     }
   }
@@ -694,6 +699,10 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
   if (trajectory) trajectory->cycle_s = cycle_s;
   NoiseQuadrature quad =
       noise_quadrature(stepper, entries, persistence, directions, keep, keep, cap, trajectory.get());
+
+  // A stratum's stuck share is its mean's: a stratum pinned between two that
+  // get through is read along the axis (engine/stuck_profile.hpp).
+  if (strata_axis) probe_cycles += read_stuck_along_axis(stepper, unsplit, *strata_axis, persistence, directions, cap, quad);
 
   StateAnalysis a;
   a.cycles_simulated = quad.cycles_simulated + probe_cycles;
