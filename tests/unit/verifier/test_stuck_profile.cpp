@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "engine/stuck_profile.hpp"
@@ -13,6 +14,8 @@
 
 namespace engine = p3at::verifier::engine;
 using p3at::verifier::normal_cdf;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 namespace {
 
@@ -72,7 +75,7 @@ TEST_CASE("the integral of a piecewise-linear share against the normal density")
       const double s = c < -1.0 ? 0.0 : (c > 1.0 ? 1.0 : 0.5 * (c + 1.0));
       sum += s * std::exp(-0.5 * c * c) / std::sqrt(2.0 * 3.14159265358979323846) * dz;
     }
-    CHECK(engine::stuck_mass_between(nodes, -INFINITY, INFINITY) == doctest::Approx(sum).epsilon(1e-6));
+    CHECK(engine::stuck_mass_between(nodes, -kInf, kInf) == doctest::Approx(sum).epsilon(1e-6));
     CHECK(sum == doctest::Approx(0.5).epsilon(1e-6));  // odd about z = 0
   }
 }
@@ -87,7 +90,7 @@ TEST_CASE("a narrow pinned band inside the middle slab is found and weighed by i
   engine::StuckProfileLimits limits;
   limits.max_probes = 40;
   const auto nodes = engine::refine_stuck_profile(strata_nodes(share), probe, limits, probes);
-  const double mass = engine::stuck_mass_between(nodes, -INFINITY, INFINITY);
+  const double mass = engine::stuck_mass_between(nodes, -kInf, kInf);
   MESSAGE("pinned mass " << mass << " against " << truth << " after " << probes << " probes");
   // The slabs alone said the middle stratum's 0.547 and the tail's 0.012.
   // Each step is located within limits.min_width, and the linear share

@@ -28,6 +28,26 @@ double linear_times_normal(double a, double b, double l, double u) {
   return a * (cdf(u) - cdf(l)) + b * (pdf(l) - pdf(u));
 }
 
+/// Where a pinned mass stands on average: its location sums over its mass
+/// (the origin for no mass; the caller decides what that means).
+StuckNode pinned_node(double z, double share, double mass, double sum_x, double sum_y) {
+  StuckNode n{z, share, 0.0, 0.0};
+  if (mass > 0.0) {
+    n.x_m = sum_x / mass;
+    n.y_m = sum_y / mass;
+  }
+  return n;
+}
+
+/// Each stratum's mass: its finished paths' weights plus what it has pinned.
+std::array<double, kErrorStrata> stratum_totals(const NoiseQuadrature& quad, std::array<double, kErrorStrata>& finished) {
+  finished = {};
+  for (const FinishedPath& p : quad.finished) finished[p.walker.stratum] += p.walker.weight;
+  std::array<double, kErrorStrata> total{};
+  for (std::size_t k = 0; k < kErrorStrata; ++k) total[k] = finished[k] + quad.stuck_by_stratum[k];
+  return total;
+}
+
 }  // namespace
 
 std::vector<StuckNode> refine_stuck_profile(std::vector<StuckNode> nodes, const StuckProbe& probe,
@@ -75,12 +95,9 @@ double stuck_mass_between(std::vector<StuckNode> nodes, double lo, double hi) {
 
 void rebalance_strata(NoiseQuadrature& quad, const std::array<double, kErrorStrata>& target_stuck,
                       const std::vector<StuckNode>& nodes) {
-  std::array<double, kErrorStrata> finished{}, total{}, target{};
-  for (const FinishedPath& p : quad.finished) finished[p.walker.stratum] += p.walker.weight;
-  for (std::size_t k = 0; k < kErrorStrata; ++k) {
-    total[k] = finished[k] + quad.stuck_by_stratum[k];
-    target[k] = std::clamp(target_stuck[k], 0.0, total[k]);
-  }
+  std::array<double, kErrorStrata> finished{}, target{};
+  const std::array<double, kErrorStrata> total = stratum_totals(quad, finished);
+  for (std::size_t k = 0; k < kErrorStrata; ++k) target[k] = std::clamp(target_stuck[k], 0.0, total[k]);
   // What each stratum lets through, and who finishes it for a stratum the
   // quadrature pinned whole.
   std::array<double, kErrorStrata> through{};
@@ -117,12 +134,14 @@ void rebalance_strata(NoiseQuadrature& quad, const std::array<double, kErrorStra
   // The pinned mass and where it stands.
   double stuck = 0.0, x = 0.0, y = 0.0;
   for (std::size_t k = 0; k < kErrorStrata; ++k) {
-    if (!(target[k] > 0.0)) continue;
-    double px = 0.0, py = 0.0;
-    if (quad.stuck_by_stratum[k] > 0.0) {
-      px = quad.stuck_x_by_stratum[k] / quad.stuck_by_stratum[k];
-      py = quad.stuck_y_by_stratum[k] / quad.stuck_by_stratum[k];
-    } else {
+    if (!(target[k] > 0.0)) {
+      quad.stuck_by_stratum[k] = quad.stuck_x_by_stratum[k] = quad.stuck_y_by_stratum[k] = 0.0;
+      continue;
+    }
+    const StuckNode own =
+        pinned_node(0.0, 0.0, quad.stuck_by_stratum[k], quad.stuck_x_by_stratum[k], quad.stuck_y_by_stratum[k]);
+    double px = own.x_m, py = own.y_m;
+    if (!(quad.stuck_by_stratum[k] > 0.0)) {
       // The pinned node nearest the slab (inside it: distance 0).
       const StratumSlab slab = stratum_slab(k);
       double nearest = std::numeric_limits<double>::infinity();
@@ -143,9 +162,6 @@ void rebalance_strata(NoiseQuadrature& quad, const std::array<double, kErrorStra
     x += target[k] * px;
     y += target[k] * py;
   }
-  for (std::size_t k = 0; k < kErrorStrata; ++k) {
-    if (!(target[k] > 0.0)) quad.stuck_by_stratum[k] = quad.stuck_x_by_stratum[k] = quad.stuck_y_by_stratum[k] = 0.0;
-  }
   quad.stuck = stuck;
   quad.stuck_x_m = x;
   quad.stuck_y_m = y;
@@ -154,19 +170,15 @@ void rebalance_strata(NoiseQuadrature& quad, const std::array<double, kErrorStra
 std::size_t read_stuck_along_axis(const PathStepper& stepper, const std::vector<Walker>& unsplit,
                                   const Eigen::Vector3d& axis, std::int64_t persistence, std::size_t directions,
                                   std::size_t cap, NoiseQuadrature& quad) {
-  std::array<double, kErrorStrata> total{};
-  for (const FinishedPath& p : quad.finished) total[p.walker.stratum] += p.walker.weight;
+  std::array<double, kErrorStrata> finished{};
+  const std::array<double, kErrorStrata> total = stratum_totals(quad, finished);
   // The strata by z, each with its main-run share.
   std::vector<std::size_t> order;
   std::vector<StuckNode> nodes(kErrorStrata);
   for (std::size_t k = 0; k < kErrorStrata; ++k) {
     const double stuck = quad.stuck_by_stratum[k];
-    total[k] += stuck;
-    nodes[k] = {error_strata()[k].z, total[k] > 0.0 ? stuck / total[k] : 0.0, 0.0, 0.0};
-    if (stuck > 0.0) {
-      nodes[k].x_m = quad.stuck_x_by_stratum[k] / stuck;
-      nodes[k].y_m = quad.stuck_y_by_stratum[k] / stuck;
-    }
+    nodes[k] = pinned_node(error_strata()[k].z, total[k] > 0.0 ? stuck / total[k] : 0.0, stuck,
+                           quad.stuck_x_by_stratum[k], quad.stuck_y_by_stratum[k]);
     if (total[k] > 0.0) order.push_back(k);
   }
   std::sort(order.begin(), order.end(),
@@ -176,12 +188,7 @@ std::size_t read_stuck_along_axis(const PathStepper& stepper, const std::vector<
     const NoiseQuadrature q =
         noise_quadrature(stepper, shifted_along(unsplit, axis, z), persistence, directions, directions, directions, cap);
     cycles += q.cycles_simulated;
-    StuckNode n{z, q.stuck, 0.0, 0.0};
-    if (q.stuck > 0.0) {
-      n.x_m = q.stuck_x_m / q.stuck;
-      n.y_m = q.stuck_y_m / q.stuck;
-    }
-    return n;
+    return pinned_node(z, q.stuck, q.stuck, q.stuck_x_m, q.stuck_y_m);
   };
   // Only a band: a stratum mostly pinned between two that mostly get
   // through (an edge keeps its slabs: the header says why).
