@@ -8,6 +8,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 
+#include "engine/direction_arcs.hpp"
 #include "engine/error_strata.hpp"
 
 namespace p3at::verifier::engine {
@@ -62,6 +63,20 @@ struct StillCheck {
     armed = true;
     return same;
   }
+};
+
+/// A mean-path sample of one path (noise_quadrature's per-second sums).
+struct PathSample2 {
+  std::size_t index = 0;
+  double x_m = 0.0, y_m = 0.0;
+};
+
+/// How one path under a draw ended: its outcome (direction_arcs.hpp), the
+/// walker there, and its samples for the mean path.
+struct PathEnd {
+  DrawOutcome outcome = kDrawRunning;
+  Walker walker;
+  std::vector<PathSample2> samples;
 };
 
 // The clustering's metric: metres, with a heading difference of 1 rad
@@ -404,10 +419,6 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
     sxy[i] += weight * x * y;
     syy[i] += weight * y * y;
   };
-  auto sample = [&](const Walker& w) {
-    if (w.cycles % every != 0) return;
-    add_sample(w.cycles / every, w.weight, w.q.x_m, w.q.y_m);
-  };
 
   const std::size_t length = persistence > 0 ? static_cast<std::size_t>(persistence) : cap + 1;
   std::vector<Walker> live = starts;
@@ -429,6 +440,75 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
     out.stuck_by_stratum[w.stratum] += w.weight;
     out.stuck_x_by_stratum[w.stratum] += w.weight * w.q.x_m;
     out.stuck_y_by_stratum[w.stratum] += w.weight * w.q.y_m;
+  };
+  // One path from `from` under a draw at `angle` until `until`: how it
+  // ended, where, and (for the mean path) its samples. The walker's weight
+  // is set when it is committed. Nothing else is touched, so a probe
+  // (direction_arcs) steps exactly what the quadrature's own paths step.
+  const auto run_path = [&](Walker w, double angle, std::size_t until, std::vector<TrajectoryPoint>* trace,
+                            bool keep_samples) {
+    PathEnd end;
+    StillCheck own;  // this path alone, within a draw that lasts over the window
+    own.next = w.cycles + kStillWindowCycles;
+    own.spin = spin;
+    const exec::Vec2<double> direction{std::cos(angle), std::sin(angle)};
+    for (;;) {
+      if (trace != nullptr) {
+        if (trace->size() >= 2 && at_rest(w.q) && at_rest(trace->back().base)) {
+          trace = nullptr;
+        } else {
+          trace->push_back({w.q, w.error});
+        }
+      }
+      if (const auto exit = stepper.fired(w)) {
+        end.outcome = draw_fired(*exit);
+        break;
+      }
+      if (w.cycles >= cap || (checks_still && one_draw && own.still(w.cycles, w.q.x_m, w.q.y_m, w.q.theta_rad, finished_mass))) {
+        end.outcome = kDrawPinned;
+        break;
+      }
+      if (w.cycles >= until) {
+        end.outcome = kDrawRunning;
+        break;
+      }
+      if (keep_samples && w.cycles % every == 0) end.samples.push_back({w.cycles / every, w.q.x_m, w.q.y_m});
+      stepper.step(w, direction);
+      ++out.cycles_simulated;
+    }
+    end.walker = w;
+    return end;
+  };
+  // The first draw's circles: where neighbouring directions of one start
+  // end differently, each path's weight becomes its arc's share of the
+  // circle's mass (engine/direction_arcs.hpp). Only a circle stepped from
+  // one walker: dealt among start points, neighbours differ by where they
+  // started as well, and a probe would have to pick one.
+  const auto place_on_arcs = [&](const auto& jobs, const std::vector<PathEnd>& ends, const std::vector<Walker>& from,
+                                 std::size_t until, std::vector<double>& weights) {
+    std::vector<std::vector<std::size_t>> circles;
+    for (std::size_t j = 0; j < jobs.size(); ++j) {
+      if (circles.size() <= jobs[j].start) circles.resize(jobs[j].start + 1);
+      circles[jobs[j].start].push_back(j);
+    }
+    for (const std::vector<std::size_t>& circle : circles) {
+      if (circle.size() < 2) continue;
+      const std::size_t parent = jobs[circle.front()].parent;
+      if (!std::all_of(circle.begin(), circle.end(), [&](std::size_t j) { return jobs[j].parent == parent; })) continue;
+      std::vector<double> angles;
+      std::vector<DrawOutcome> outcomes;
+      double mass = 0.0;
+      for (const std::size_t j : circle) {
+        angles.push_back(jobs[j].angle);
+        outcomes.push_back(ends[j].outcome);
+        mass += weights[j];
+      }
+      std::size_t probes = 0;
+      const DrawProbe probe = [&](double angle) { return run_path(from[parent], angle, until, nullptr, false).outcome; };
+      const std::vector<double> share = direction_arcs(angles, outcomes, probe, DirectionArcLimits{}, probes);
+      if (probes == 0) continue;  // all agree: the equal weights stand, bit for bit
+      for (std::size_t i = 0; i < circle.size(); ++i) weights[circle[i]] = mass * share[i];
+    }
   };
   for (std::size_t segment = 0; !live.empty(); ++segment) {
     if (segment > 0) ++out.redraws;
@@ -472,46 +552,40 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
         }
       }
     }
+    // Each path is stepped first and committed after: under the first draw
+    // the boundaries between outcomes are placed on the circle
+    // (engine/direction_arcs.hpp) and the paths take their arcs' weights.
+    std::vector<PathEnd> ends;
+    ends.reserve(jobs.size());
     for (const Job& job : jobs) {
-      Walker w = live[job.parent];
-      StillCheck own;  // this path alone, within a draw that lasts over the window
-      own.next = w.cycles + kStillWindowCycles;
-      own.spin = spin;
-      w.weight = job.weight;
       // Recorded until the robot has come to rest for good (a leg waiting
       // at its goal for a message): beyond the record the pose is held.
       std::vector<TrajectoryPoint>* trace =
           (record != nullptr && segment == 0) ? &record->paths[job.slot] : nullptr;
-      if (trace != nullptr) record->weights[job.slot] = w.weight;
-      const exec::Vec2<double> direction{std::cos(job.angle), std::sin(job.angle)};
-      for (;;) {
-        if (trace != nullptr) {
-          if (trace->size() >= 2 && at_rest(w.q) && at_rest(trace->back().base)) {
-            trace = nullptr;
-          } else {
-            trace->push_back({w.q, w.error});
-          }
-        }
-        if (const auto exit = stepper.fired(w)) {
-          FinishedPath done{w, *exit, segment, job.direction, job.start, 0.0};
-          done.phase_cycles = stepper.settle_phase(done.walker, *exit, &done.crossing_c, &done.step, &done.crossing_sd);
-          if (done.crossing_c >= 0.0) done.phase_var = 1.0 / 12.0;
-          out.finished.push_back(done);
-          finished_mass += done.walker.weight;
-          break;
-        }
-        if (w.cycles >= cap || (checks_still && one_draw && own.still(w.cycles, w.q.x_m, w.q.y_m, w.q.theta_rad, finished_mass))) {
-          if (record != nullptr && segment == 0) record->stuck[job.slot] = 1;
-          count_stuck(w);
-          break;
-        }
-        if (w.cycles >= until) {
-          children.push_back(w);
-          break;
-        }
-        sample(w);
-        stepper.step(w, direction);
-        ++out.cycles_simulated;
+      ends.push_back(run_path(live[job.parent], job.angle, until, trace, true));
+    }
+    std::vector<double> weights(jobs.size());
+    for (std::size_t j = 0; j < jobs.size(); ++j) weights[j] = jobs[j].weight;
+    if (segment == 0 && directions >= 2) place_on_arcs(jobs, ends, live, until, weights);
+    for (std::size_t j = 0; j < jobs.size(); ++j) {
+      const Job& job = jobs[j];
+      PathEnd& end = ends[j];
+      const double weight = weights[j];
+      end.walker.weight = weight;
+      if (record != nullptr && segment == 0) record->weights[job.slot] = weight;
+      for (const PathSample2& p : end.samples) add_sample(p.index, weight, p.x_m, p.y_m);
+      if (end.outcome >= draw_fired(0)) {
+        FinishedPath done{end.walker, static_cast<std::size_t>(end.outcome - draw_fired(0)), segment, job.direction,
+                          job.start, 0.0};
+        done.phase_cycles = stepper.settle_phase(done.walker, done.exit, &done.crossing_c, &done.step, &done.crossing_sd);
+        if (done.crossing_c >= 0.0) done.phase_var = 1.0 / 12.0;
+        out.finished.push_back(done);
+        finished_mass += done.walker.weight;
+      } else if (end.outcome == kDrawPinned) {
+        if (record != nullptr && segment == 0) record->stuck[job.slot] = 1;
+        count_stuck(end.walker);
+      } else {
+        children.push_back(end.walker);
       }
     }
     // Far from the goal and from obstacles the flow is nearly linear in the

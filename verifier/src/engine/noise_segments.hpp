@@ -11,7 +11,10 @@
 /// the cost is about keep × directions paths whatever the number of redraws.
 ///
 /// With no redraw before the paths end (persistence at least the leg) this
-/// is exactly the held-direction quadrature: one path per direction.
+/// is exactly the held-direction quadrature: one path per direction. Under
+/// the first draw a path's weight is its arc of the circle: where
+/// neighbouring directions of one start end differently, the boundary
+/// between them is found by bisection (engine/direction_arcs.hpp).
 /// A path that fires during segment s ends there: the duration's
 /// distribution is the mass firing at each cycle, and a long tail (a robot
 /// held off its goal by a strong NOISE that escapes at some later redraw) is

@@ -199,26 +199,44 @@ Mixture1 redrawn_duration(const std::vector<double>& values, const std::vector<d
 /// duration comes in lumps one draw apart (generated gen_1042's 8.6 m leg,
 /// persistence 800: 41 % of runs at 54-63 s, 53 % at 80-82 s, 4 % near
 /// 160 s; one kernel over them all made it one smooth 79 +- 31 s). When the
-/// draws are long against the kernel (persistence > 4 x its width), each
-/// draw's firings get their own kernel; shorter draws blur together anyway.
+/// draws are long against the lumps (persistence > 4 x the firings' spread
+/// within a draw) and not negligible against the whole spread (> a quarter of
+/// its sd), each draw's firings get their own kernel; shorter draws blur
+/// together anyway. The test was once against the whole's kernel, which the
+/// lumps' spacing itself widens: generated gen_7719's first leg (persistence
+/// 48 s, lumps 1-2 s wide at 34, 52, 100, 148 s... in 2,000 runs) had a
+/// whole kernel of 12 s, just over a quarter of the draw, and came out one
+/// smooth curve 0.26 below the runs at 53 s.
 Mixture1 redrawn_duration_by_draw(const std::vector<double>& values, const std::vector<double>& weights,
                                   const std::vector<std::size_t>& segments, double persistence_s,
                                   std::size_t max_components) {
   const Mixture1 whole = redrawn_duration(values, weights, max_components);
-  double kernel_var = 0.0, wsum = 0.0;
-  for (const Component1& c : whole.components) {
-    kernel_var += c.weight * c.var;
-    wsum += c.weight;
-  }
-  if (!(wsum > 0.0) || !(persistence_s > 4.0 * std::sqrt(kernel_var / wsum))) return whole;
   std::map<std::size_t, std::pair<std::vector<double>, std::vector<double>>> by_draw;
-  double total = 0.0;
+  double total = 0.0, sum = 0.0, sum2 = 0.0;
   for (std::size_t i = 0; i < values.size(); ++i) {
     by_draw[segments[i]].first.push_back(values[i]);
     by_draw[segments[i]].second.push_back(weights[i]);
     total += weights[i];
+    sum += weights[i] * values[i];
+    sum2 += weights[i] * values[i] * values[i];
   }
   if (by_draw.size() < 2 || !(total > 0.0)) return whole;
+  // The pooled spread within the draws, and the whole's.
+  double within = 0.0;
+  for (const auto& [segment, group] : by_draw) {
+    (void)segment;
+    double mass = 0.0, gsum = 0.0;
+    for (std::size_t j = 0; j < group.first.size(); ++j) {
+      mass += group.second[j];
+      gsum += group.second[j] * group.first[j];
+    }
+    if (!(mass > 0.0)) continue;
+    const double gmean = gsum / mass;
+    for (std::size_t j = 0; j < group.first.size(); ++j) within += group.second[j] * (group.first[j] - gmean) * (group.first[j] - gmean);
+  }
+  const double whole_sd = std::sqrt(std::max(0.0, sum2 / total - (sum / total) * (sum / total)));
+  const bool lumps = persistence_s > 4.0 * std::sqrt(within / total) && persistence_s > 0.25 * whole_sd;
+  if (!lumps) return whole;
   Mixture1 out;
   for (const auto& [segment, group] : by_draw) {
     (void)segment;
