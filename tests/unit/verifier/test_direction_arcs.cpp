@@ -61,6 +61,20 @@ TEST_CASE("an arc of one outcome is located to the bisection's resolution") {
   CHECK(probes == 2 * limits.depth);
   CHECK(calls == probes);
   for (std::size_t j = 3; j <= 6; ++j) CHECK(share[j] == doctest::Approx(1.0 / 8.0));
+
+  // The boundaries (engine/held_duration times the arcs by them): the arc
+  // of direction 0 is between the last one and the first, near lo and hi.
+  std::vector<double> boundaries;
+  std::size_t again = 0;
+  const std::vector<double> same = engine::direction_arcs(angles, outcomes, probe, limits, again, &boundaries);
+  REQUIRE(boundaries.size() == 8);
+  CHECK(same == share);
+  CHECK(std::abs(boundaries[0] - hi) <= resolution * kTwoPi + 1e-12);
+  CHECK(std::abs(boundaries[7] - kTwoPi - lo) <= resolution * kTwoPi + 1e-12);
+  for (std::size_t j = 0; j < 8; ++j) {
+    const double left = j == 0 ? boundaries[7] - kTwoPi : boundaries[j - 1];
+    CHECK((boundaries[j] - left) / kTwoPi == doctest::Approx(share[j]).epsilon(1e-12));
+  }
 }
 
 TEST_CASE("the arc across the wrap of the circle") {

@@ -141,3 +141,89 @@ TEST_CASE("the odometry's jitter spreads each crossing over its checks, the mass
   CHECK(mean / kCycle == doctest::Approx(50.75).epsilon(0.002));
   CHECK(p_by_check(m, 50.0) == doctest::Approx(0.4503).epsilon(0.01));  // P(X <= 50) = Phi(-0.125)
 }
+
+namespace {
+
+/// A circle of eight directions at phi_j = 2 pi (j + 0.3) / 8 with the arcs'
+/// boundaries at the midpoints (what direction_arcs gives where nothing differs).
+void equal_arcs(HeldCircle& circle) {
+  circle.angles.clear();
+  circle.boundaries.clear();
+  for (int j = 0; j < 8; ++j) {
+    circle.angles.push_back(2.0 * kPi * (j + 0.3) / 8.0);
+    circle.boundaries.push_back(2.0 * kPi * (j + 0.8) / 8.0);
+  }
+}
+
+p3at::verifier::engine::ProbeEnd probe_at(double angle, double t_cycles) {
+  p3at::verifier::engine::ProbeEnd p;
+  p.angle_rad = angle;
+  if (t_cycles < 0.0) return p;  // still running at the redraw
+  p.outcome = p3at::verifier::engine::draw_fired(0);
+  p.cycles = static_cast<std::size_t>(std::ceil(t_cycles));
+  p.crossing_c = t_cycles - (static_cast<double>(p.cycles) - 1.0);
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("a probed circle with equal arcs and no probes gives the equal spacing's duration") {
+  // The arcs' code path on unequal spacing reduces to the equal spacing's
+  // Hermite where the spacing is equal: the same components.
+  std::vector<FinishedPath> paths;
+  for (int j = 0; j < 8; ++j) paths.push_back(crossing_at(100.0 + 20.0 * std::cos(2.0 * kPi * (j + 0.3) / 8.0), 1.0 / 8.0));
+  HeldCircle plain;
+  for (const FinishedPath& p : paths) plain.fired.push_back(&p);
+  plain.fired[6] = nullptr;  // one running neighbour, so the toward-the-redraw rule is compared too
+  plain.running.assign(8, false);
+  plain.running[6] = true;
+  plain.draw_end_cycles = 125.0;
+  HeldCircle probed = plain;
+  equal_arcs(probed);
+  const Mixture1 a = held_duration(plain, kCycle, 400), b = held_duration(probed, kCycle, 400);
+  REQUIRE(a.components.size() == b.components.size());
+  for (std::size_t i = 0; i < a.components.size(); ++i) {
+    CHECK(b.components[i].mean == doctest::Approx(a.components[i].mean).epsilon(1e-12));
+    CHECK(b.components[i].weight == doctest::Approx(a.components[i].weight).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("a fired direction's arc past the midpoint takes the times of the probes that fired in it") {
+  // Direction 0 fires at 330 cycles, the other seven run past the redraw at
+  // 480 (gen_7719's first leg: one direction through a corner's gap under a
+  // NOISE held 48 s). Bisected toward each neighbour, the probes at half and
+  // five eighths of the spacing fired too, at 336 and 340; those at three
+  // quarters ran on: the arc reaches 11/16 of the spacing either side.
+  const double spacing = 2.0 * kPi / 8.0;
+  FinishedPath through = crossing_at(330.0, 1.0);
+  HeldCircle circle;
+  circle.fired.assign(8, nullptr);
+  circle.fired[0] = &through;
+  circle.running.assign(8, true);
+  circle.running[0] = false;
+  circle.draw_end_cycles = 480.0;
+  for (int j = 0; j < 8; ++j) {
+    circle.angles.push_back(spacing * j);
+    circle.boundaries.push_back(spacing * (j + 0.5));
+  }
+  circle.boundaries[0] = spacing * 11.0 / 16.0;
+  circle.boundaries[7] = 2.0 * kPi - spacing * 11.0 / 16.0;
+  const HeldCircle without_probes = circle;
+  for (const double side : {1.0, -1.0}) {
+    circle.probes.push_back(probe_at(side * 0.5 * spacing, 336.0));
+    circle.probes.push_back(probe_at(side * 0.75 * spacing, -1.0));
+    circle.probes.push_back(probe_at(side * 0.625 * spacing, 340.0));
+  }
+  const Mixture1 m = held_duration(circle, kCycle, 400);
+  // Between the direction's 330 and the outer probes' 340; only the last
+  // sixteenth of the spacing either side (1/11 of the arc), toward the
+  // running probes, rises on toward the redraw, half way at most.
+  CHECK(p_by_check(m, 329.0) < 1e-9);
+  CHECK(p_by_check(m, 336.0) > 0.6);
+  CHECK(p_by_check(m, 341.0) >= 10.0 / 11.0 - 1e-9);
+  CHECK(p_by_check(m, 420.0) == doctest::Approx(1.0));
+  // Without the probes the same arc rises toward the redraw: a third of
+  // its mass after 360 cycles.
+  const Mixture1 guessed = held_duration(without_probes, kCycle, 400);
+  CHECK(1.0 - p_by_check(guessed, 360.0) > 0.3);
+}

@@ -3,12 +3,9 @@
 #include <algorithm>
 
 namespace p3at::verifier::engine {
-namespace {
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
-}  // namespace
-
 std::vector<double> direction_arcs(const std::vector<double>& angles, const std::vector<DrawOutcome>& outcomes,
-                                   const DrawProbe& probe, const DirectionArcLimits& limits, std::size_t& probes_made) {
+                                   const DrawProbe& probe, const DirectionArcLimits& limits, std::size_t& probes_made,
+                                   std::vector<double>* boundaries) {
   const std::size_t n = angles.size();
   std::vector<double> equal(n, n > 0 ? 1.0 / static_cast<double>(n) : 0.0);
   if (n < 2 || outcomes.size() != n) return equal;
@@ -18,7 +15,7 @@ std::vector<double> direction_arcs(const std::vector<double>& angles, const std:
   std::size_t made = 0;
   for (std::size_t j = 0; j < n; ++j) {
     const std::size_t k = (j + 1) % n;
-    double lo = angles[j], hi = angles[k] + (k == 0 ? kTwoPi : 0.0);
+    double lo = angles[j], hi = angles[k] + (k == 0 ? kTurnRad : 0.0);
     if (outcomes[j] != outcomes[k]) {
       for (std::size_t d = 0; d < limits.depth && made < limits.max_probes; ++d) {
         const double mid = 0.5 * (lo + hi);
@@ -36,10 +33,11 @@ std::vector<double> direction_arcs(const std::vector<double>& angles, const std:
     boundary[j] = 0.5 * (lo + hi);
   }
   probes_made += made;
+  if (boundaries != nullptr) *boundaries = boundary;
   std::vector<double> share(n);
   for (std::size_t j = 0; j < n; ++j) {
-    const double left = j == 0 ? boundary[n - 1] - kTwoPi : boundary[j - 1];
-    share[j] = std::max(0.0, boundary[j] - left) / kTwoPi;
+    const double left = j == 0 ? boundary[n - 1] - kTurnRad : boundary[j - 1];
+    share[j] = std::max(0.0, boundary[j] - left) / kTurnRad;
   }
   return share;
 }

@@ -28,6 +28,9 @@
 
 namespace p3at::verifier::engine {
 
+/// A whole turn of the circle of directions, in radians.
+inline constexpr double kTurnRad = 2.0 * 3.14159265358979323846;
+
 /// What a path does under the first draw (a transition fired is its index + 2).
 using DrawOutcome = long;
 inline constexpr DrawOutcome kDrawPinned = 0;   ///< stood still for good or reached the cycle cap
@@ -45,7 +48,12 @@ struct DirectionArcLimits {
 /// Each direction's share of the circle (summing to 1), for `angles`
 /// increasing and less than a turn apart end to end, with their `outcomes`.
 /// Fewer than two directions, or all agreeing: the equal shares, no probe.
+/// `boundaries` (when given and probes were made): boundary j, between
+/// direction j and j + 1, in the angles' radians (the last one lies between
+/// angles[n - 1] and angles[0] + 2 pi), so direction j's arc runs from
+/// boundary j - 1 to boundary j, with boundary -1 = boundary n - 1 - 2 pi.
 std::vector<double> direction_arcs(const std::vector<double>& angles, const std::vector<DrawOutcome>& outcomes,
-                                   const DrawProbe& probe, const DirectionArcLimits& limits, std::size_t& probes_made);
+                                   const DrawProbe& probe, const DirectionArcLimits& limits, std::size_t& probes_made,
+                                   std::vector<double>* boundaries = nullptr);
 
 }  // namespace p3at::verifier::engine

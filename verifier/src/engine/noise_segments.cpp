@@ -504,10 +504,22 @@ NoiseQuadrature noise_quadrature(const PathStepper& stepper, const std::vector<W
         mass += weights[j];
       }
       std::size_t probes = 0;
-      const DrawProbe probe = [&](double angle) { return run_path(from[parent], angle, until, nullptr, false).outcome; };
-      const std::vector<double> share = direction_arcs(angles, outcomes, probe, DirectionArcLimits{}, probes);
+      ProbedCircle probed{jobs[circle.front()].start, angles, {}, {}};
+      const DrawProbe probe = [&](double angle) {
+        PathEnd end = run_path(from[parent], angle, until, nullptr, false);
+        ProbeEnd p{angle, end.outcome, end.walker.cycles, -1.0, 0.0};
+        if (end.outcome >= draw_fired(0)) {
+          stepper.settle_phase(end.walker, static_cast<std::size_t>(end.outcome - draw_fired(0)), &p.crossing_c, nullptr,
+                               &p.crossing_sd);
+        }
+        probed.probes.push_back(p);
+        return end.outcome;
+      };
+      const std::vector<double> share =
+          direction_arcs(angles, outcomes, probe, DirectionArcLimits{}, probes, &probed.boundaries);
       if (probes == 0) continue;  // all agree: the equal weights stand, bit for bit
       for (std::size_t i = 0; i < circle.size(); ++i) weights[circle[i]] = mass * share[i];
+      out.probed.push_back(std::move(probed));
     }
   };
   for (std::size_t segment = 0; !live.empty(); ++segment) {

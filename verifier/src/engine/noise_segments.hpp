@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/direction_arcs.hpp"
 #include "engine/error_strata.hpp"
 #include "engine/leg_trajectory.hpp"
 #include "engine/path_stepper.hpp"
@@ -48,8 +49,30 @@ struct FinishedPath {
   double crossing_sd = 0.0;      ///< the crossing time's sd in cycles from the odometry's random error
 };
 
+/// One probe of a first-draw circle (engine/direction_arcs): a path stepped
+/// at `angle_rad` under the first draw to place a boundary. It carries no
+/// weight of its own; where it fired, its crossing is a sample of the
+/// duration inside its direction's arc (engine/held_duration).
+struct ProbeEnd {
+  double angle_rad = 0.0;
+  DrawOutcome outcome = kDrawRunning;
+  std::size_t cycles = 0;      ///< when it ended (fired: the check that fired)
+  double crossing_c = -1.0;    ///< as FinishedPath's, when it fired
+  double crossing_sd = 0.0;
+};
+
+/// A first-draw circle whose outcome boundaries were bisected: the
+/// directions' angles, the boundaries between their arcs (direction_arcs()'s
+/// `boundaries`) and the probes.
+struct ProbedCircle {
+  std::size_t start = 0;  ///< FinishedPath::start of its paths
+  std::vector<double> angles, boundaries;
+  std::vector<ProbeEnd> probes;
+};
+
 struct NoiseQuadrature {
   std::vector<FinishedPath> finished;
+  std::vector<ProbedCircle> probed;  ///< the first draw's circles with probes (none: equal arcs everywhere)
   double stuck = 0.0;              ///< mass that never fired an exit: at the cycle cap, standing still (noise_segments.cpp), or a vanishing remainder
   double stuck_x_m = 0.0;          ///< mass-weighted sum of where the stuck walkers were (divide by stuck)
   double stuck_y_m = 0.0;

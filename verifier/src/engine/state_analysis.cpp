@@ -961,6 +961,13 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
         // still running at its end.
         c.running.assign(directions, quad.redraws > 0);
         c.draw_end_cycles = static_cast<double>(persistence);
+        c.exit = t;
+        for (const ProbedCircle& probed : quad.probed) {
+          if (probed.start != from || probed.angles.size() != directions) continue;
+          c.angles = probed.angles;
+          c.boundaries = probed.boundaries;
+          c.probes = probed.probes;
+        }
       }
       return c;
     };
