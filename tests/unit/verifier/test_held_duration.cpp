@@ -146,13 +146,13 @@ namespace {
 
 /// A circle of eight directions at phi_j = 2 pi (j + 0.3) / 8 with the arcs'
 /// boundaries at the midpoints (what direction_arcs gives where nothing differs).
-void equal_arcs(HeldCircle& circle) {
-  circle.angles.clear();
-  circle.boundaries.clear();
+p3at::verifier::engine::ProbedCircle equal_arcs() {
+  p3at::verifier::engine::ProbedCircle circle;
   for (int j = 0; j < 8; ++j) {
     circle.angles.push_back(2.0 * kPi * (j + 0.3) / 8.0);
     circle.boundaries.push_back(2.0 * kPi * (j + 0.8) / 8.0);
   }
+  return circle;
 }
 
 p3at::verifier::engine::ProbeEnd probe_at(double angle, double t_cycles) {
@@ -179,7 +179,8 @@ TEST_CASE("a probed circle with equal arcs and no probes gives the equal spacing
   plain.running[6] = true;
   plain.draw_end_cycles = 125.0;
   HeldCircle probed = plain;
-  equal_arcs(probed);
+  const p3at::verifier::engine::ProbedCircle arcs = equal_arcs();
+  probed.probed = &arcs;
   const Mixture1 a = held_duration(plain, kCycle, 400), b = held_duration(probed, kCycle, 400);
   REQUIRE(a.components.size() == b.components.size());
   for (std::size_t i = 0; i < a.components.size(); ++i) {
@@ -202,18 +203,22 @@ TEST_CASE("a fired direction's arc past the midpoint takes the times of the prob
   circle.running.assign(8, true);
   circle.running[0] = false;
   circle.draw_end_cycles = 480.0;
+  p3at::verifier::engine::ProbedCircle arcs;
   for (int j = 0; j < 8; ++j) {
-    circle.angles.push_back(spacing * j);
-    circle.boundaries.push_back(spacing * (j + 0.5));
+    arcs.angles.push_back(spacing * j);
+    arcs.boundaries.push_back(spacing * (j + 0.5));
   }
-  circle.boundaries[0] = spacing * 11.0 / 16.0;
-  circle.boundaries[7] = 2.0 * kPi - spacing * 11.0 / 16.0;
-  const HeldCircle without_probes = circle;
+  arcs.boundaries[0] = spacing * 11.0 / 16.0;
+  arcs.boundaries[7] = 2.0 * kPi - spacing * 11.0 / 16.0;
+  const p3at::verifier::engine::ProbedCircle arcs_alone = arcs;
+  HeldCircle without_probes = circle;
+  without_probes.probed = &arcs_alone;
   for (const double side : {1.0, -1.0}) {
-    circle.probes.push_back(probe_at(side * 0.5 * spacing, 336.0));
-    circle.probes.push_back(probe_at(side * 0.75 * spacing, -1.0));
-    circle.probes.push_back(probe_at(side * 0.625 * spacing, 340.0));
+    arcs.probes.push_back(probe_at(side * 0.5 * spacing, 336.0));
+    arcs.probes.push_back(probe_at(side * 0.75 * spacing, -1.0));
+    arcs.probes.push_back(probe_at(side * 0.625 * spacing, 340.0));
   }
+  circle.probed = &arcs;
   const Mixture1 m = held_duration(circle, kCycle, 400);
   // Between the direction's 330 and the outer probes' 340; only the last
   // sixteenth of the spacing either side (1/11 of the arc), toward the

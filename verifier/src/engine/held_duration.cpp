@@ -26,14 +26,17 @@ constexpr double kMaxCrossingSdCycles = 50.0;
 /// within the last cycle where the trigger was crossed by moving toward it;
 /// otherwise (fired at once, or by another kind of trigger) half a cycle
 /// before the check that fired, so that the check is its ceiling again.
-double crossing_time(const FinishedPath& p) {
-  const double cycles = static_cast<double>(p.walker.cycles);
-  return p.crossing_c >= 0.0 ? cycles - 1.0 + p.crossing_c : cycles - 0.5;
+/// The same for a probe (ProbeEnd), which records its end as a path does.
+double crossing_time(std::size_t fired_at_cycles, double crossing_c) {
+  const double cycles = static_cast<double>(fired_at_cycles);
+  return crossing_c >= 0.0 ? cycles - 1.0 + crossing_c : cycles - 0.5;
 }
+double crossing_time(const FinishedPath& p) { return crossing_time(p.walker.cycles, p.crossing_c); }
 
-double crossing_sd(const FinishedPath& p) {
-  return p.crossing_c >= 0.0 ? std::min(p.crossing_sd, kMaxCrossingSdCycles) : 0.0;
+double crossing_sd(double crossing_c, double sd) {
+  return crossing_c >= 0.0 ? std::min(sd, kMaxCrossingSdCycles) : 0.0;
 }
+double crossing_sd(const FinishedPath& p) { return crossing_sd(p.crossing_c, p.crossing_sd); }
 
 /// The slope at a node from its two secants. Where T keeps rising or
 /// falling through the node, Fritsch and Carlson's harmonic mean: the
@@ -86,7 +89,9 @@ template <typename Add>
 void spread_on_arcs(const HeldCircle& circle, double mass, const Add& add) {
   const std::vector<const FinishedPath*>& fired = circle.fired;
   const std::size_t n = fired.size();
-  const double a0 = circle.angles.front();
+  const std::vector<double>& angles = circle.probed->angles;
+  const std::vector<double>& boundaries = circle.probed->boundaries;
+  const double a0 = angles.front();
   const auto unwrap = [a0](double a) {
     double u = std::fmod(a - a0, kTurnRad);
     return u < 0.0 ? u + kTurnRad : u;
@@ -95,7 +100,7 @@ void spread_on_arcs(const HeldCircle& circle, double mass, const Add& add) {
   std::vector<std::size_t> node_of;  // sample index -> direction, or n for a probe
   for (std::size_t j = 0; j < n; ++j) {
     ArcSample a;
-    a.u = unwrap(circle.angles[j]);
+    a.u = unwrap(angles[j]);
     if (fired[j]) {
       a.kind = ArcSample::kFired;
       a.t = crossing_time(*fired[j]);
@@ -106,14 +111,13 @@ void spread_on_arcs(const HeldCircle& circle, double mass, const Add& add) {
     samples.push_back(a);
     node_of.push_back(j);
   }
-  for (const ProbeEnd& p : circle.probes) {
+  for (const ProbeEnd& p : circle.probed->probes) {
     ArcSample a;
     a.u = unwrap(p.angle_rad);
     if (p.outcome == draw_fired(circle.exit)) {
       a.kind = ArcSample::kFired;
-      const double cycles = static_cast<double>(p.cycles);
-      a.t = p.crossing_c >= 0.0 ? cycles - 1.0 + p.crossing_c : cycles - 0.5;
-      a.sd = p.crossing_c >= 0.0 ? std::min(p.crossing_sd, kMaxCrossingSdCycles) : 0.0;
+      a.t = crossing_time(p.cycles, p.crossing_c);
+      a.sd = crossing_sd(p.crossing_c, p.crossing_sd);
     } else if (p.outcome == kDrawRunning) {
       a.kind = ArcSample::kRunning;
     }
@@ -165,8 +169,8 @@ void spread_on_arcs(const HeldCircle& circle, double mass, const Add& add) {
     if (!fired[j]) continue;
     const double w = fired[j]->walker.weight / mass;
     const double u = s[position[j]].u;
-    const double high = circle.boundaries[j] - a0;
-    const double low = (j == 0 ? circle.boundaries[n - 1] - kTurnRad : circle.boundaries[j - 1]) - a0;
+    const double high = boundaries[j] - a0;
+    const double low = (j == 0 ? boundaries[n - 1] - kTurnRad : boundaries[j - 1]) - a0;
     const double arc = high - low;
     if (!(arc > 0.0)) continue;
     for (const int dir : {-1, +1}) {
@@ -230,7 +234,8 @@ Mixture1 held_duration(const HeldCircle& circle, double cycle_s, std::size_t max
   // Both arcs at a node use it, and so does each neighbour's arc toward it.
   // A probed circle's arcs are timed by spread_on_arcs() (held_duration.hpp);
   // two directions are not a circle to interpolate on, each keeps its own time.
-  const bool on_arcs = n >= 3 && circle.boundaries.size() == n && circle.angles.size() == n;
+  const bool on_arcs = n >= 3 && circle.probed != nullptr && circle.probed->boundaries.size() == n &&
+                       circle.probed->angles.size() == n;
   std::vector<double> slope(n, 0.0);
   for (std::size_t j = 0; n >= 3 && !on_arcs && j < n; ++j) {
     if (!fired[j]) continue;
@@ -286,10 +291,7 @@ Mixture1 held_duration(const HeldCircle& circle, double cycle_s, std::size_t max
       const double m1 = fired[k] ? side * slope[k] : t1 - t0;
       for (std::size_t i = 0; i < kPointsPerHalfArc; ++i) {
         const double s = 0.5 * (static_cast<double>(i) + 0.5) / static_cast<double>(kPointsPerHalfArc);
-        const double s2 = s * s, s3 = s2 * s;
-        const double t = (2.0 * s3 - 3.0 * s2 + 1.0) * t0 + (s3 - 2.0 * s2 + s) * m0 + (-2.0 * s3 + 3.0 * s2) * t1 +
-                         (s3 - s2) * m1;
-        add(half / static_cast<double>(kPointsPerHalfArc), t, sd0 + s * (sd1 - sd0));
+        add(half / static_cast<double>(kPointsPerHalfArc), hermite(t0, m0, t1, m1, s), sd0 + s * (sd1 - sd0));
       }
     }
   }

@@ -23,11 +23,11 @@ struct HeldCircle {
   /// `draw_end_cycles` from the entry: its crossing lies beyond that.
   std::vector<bool> running;
   double draw_end_cycles = 0.0;
-  /// A probed circle (NoiseQuadrature::probed; empty otherwise): the
-  /// directions' angles, the boundaries between their arcs, the probes and
-  /// the exit this duration is of (probes that fired it are samples of T).
-  std::vector<double> angles, boundaries;
-  std::vector<ProbeEnd> probes;
+  /// The circle's directions' angles, the boundaries between their arcs and
+  /// the probes, when it was probed (one of NoiseQuadrature::probed, which
+  /// outlives this; null otherwise), and the exit this duration is of
+  /// (probes that fired it are samples of T).
+  const ProbedCircle* probed = nullptr;
   std::size_t exit = 0;
 };
 

@@ -963,10 +963,7 @@ StateAnalysis analyze_motion(const StateContext& ctx, std::size_t state, const B
         c.draw_end_cycles = static_cast<double>(persistence);
         c.exit = t;
         for (const ProbedCircle& probed : quad.probed) {
-          if (probed.start != from || probed.angles.size() != directions) continue;
-          c.angles = probed.angles;
-          c.boundaries = probed.boundaries;
-          c.probes = probed.probes;
+          if (probed.start == from) c.probed = &probed;
         }
       }
       return c;
